@@ -1,0 +1,137 @@
+"""The project's error tree.
+
+Every failure caused by user input (a grammar, a rule table, a command-line option, a
+missing file) is raised as a :class:`CGAError` subclass. The CLI prints ``str(error)``
+and exits with status 2; no traceback reaches the user. Errors that point into a source
+file carry a :class:`Span`; the source text is attached once, at the boundary
+(:meth:`SourceError.with_source`), so nodes and operations only need to know where they
+came from, not the whole text.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = [
+    "Span",
+    "CGAError",
+    "SourceError",
+    "GrammarSyntaxError",
+    "DerivationError",
+    "RuleTableError",
+    "NoSolutionError",
+    "ResourceNotFoundError",
+    "UsageError",
+    "ExportError",
+]
+
+
+@dataclass(frozen=True)
+class Span:
+    """A position in a source file: 1-based line and column, and the length to underline."""
+
+    file: str
+    line: int
+    column: int
+    length: int = 1
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+class CGAError(Exception):
+    """Base class of every error caused by user input."""
+
+
+class SourceError(CGAError):
+    """An error that points at a place in a grammar file."""
+
+    def __init__(self, message: str, span: Span | None = None, *, source: str | None = None,
+                 hint: str | None = None):
+        super().__init__(message)
+        self.message = message
+        self.span = span
+        self.source = source
+        self.hint = hint
+
+    def with_source(self, source: str) -> "SourceError":
+        """Attach the text of the file the span points into (once, at the API boundary)."""
+        if self.source is None:
+            self.source = source
+        return self
+
+    def __str__(self) -> str:
+        if self.span is None:
+            text = f"error: {self.message}"
+        else:
+            text = f"{self.span}: error: {self.message}"
+            excerpt = self._excerpt()
+            if excerpt:
+                text += "\n" + excerpt
+        if self.hint:
+            text += f"\n  hint: {self.hint}"
+        return text
+
+    def _excerpt(self) -> str:
+        if self.source is None or self.span is None:
+            return ""
+        lines = self.source.splitlines()
+        if not 1 <= self.span.line <= len(lines):
+            return ""
+        line = lines[self.span.line - 1].replace("\t", " ")
+        caret_col = max(self.span.column, 1)
+        underline = "^" + "~" * max(0, min(self.span.length, len(line) - caret_col + 1) - 1)
+        gutter = f"{self.span.line:>4} | "
+        return f"{gutter}{line}\n{' ' * (len(gutter) + caret_col - 1)}{underline}"
+
+
+class GrammarSyntaxError(SourceError):
+    """The grammar text does not follow the language (DESIGN §4)."""
+
+
+class DerivationError(SourceError):
+    """A rule could not be applied: unknown operation, bad argument, recursion too deep."""
+
+
+class RuleTableError(CGAError):
+    """A CSV rule table is malformed; names the file, row and column."""
+
+    def __init__(self, message: str, *, file: str, row: int | None = None,
+                 column: str | None = None):
+        where = file
+        if row is not None:
+            where += f", row {row}"
+        if column is not None:
+            where += f", column '{column}'"
+        super().__init__(f"{where}: {message}")
+        self.file = file
+        self.row = row
+        self.column = column
+
+
+class NoSolutionError(CGAError):
+    """A constraint problem (room typing, strict reachability) has no solution; says why."""
+
+    def __init__(self, message: str, reasons: list[str] | None = None):
+        self.reasons = list(reasons or [])
+        text = message + "".join(f"\n  - {r}" for r in self.reasons)
+        super().__init__(text)
+
+
+class ResourceNotFoundError(CGAError):
+    """A file named by the user (grammar, rule table, model, lot) does not exist."""
+
+    def __init__(self, what: str, name: str, searched: list[str] | None = None):
+        self.searched = list(searched or [])
+        text = f"{what} not found: {name}"
+        if self.searched:
+            text += "\n  looked in:" + "".join(f"\n    {p}" for p in self.searched)
+        super().__init__(text)
+
+
+class UsageError(CGAError):
+    """A command-line option or API argument is invalid (e.g. a bad ``--lot``)."""
+
+
+class ExportError(CGAError):
+    """An output could not be written."""

@@ -1,0 +1,275 @@
+"""The building model shared by the floor operations, the checks and the exporters.
+
+``make_floor`` creates a :class:`FloorPlan` (rooms, walls, windows), ``type_rooms``
+returns a copy with room types, a room graph and doors, ``add_furniture`` returns a copy
+with furniture. Checks and exporters only read these objects (data flows one way).
+
+Frames and conventions (DESIGN §3):
+
+* Plan coordinates are world ``(x, z)`` in metres; ``y`` is up.
+* A room's ``polygon`` is bounded by wall centre lines (inner walls) and the footprint
+  (outer walls). Its ``interior`` is the free floor: the polygon minus wall thickness.
+* A wall is one DCEL edge (a half-edge pair): a straight segment ``start``→``end`` on the
+  centre line of an inner wall, or on the footprint boundary for an outer wall, whose
+  solid lies inside the footprint. Openings are positioned by the distance of their
+  centre from ``start``.
+* Furniture ``rotation`` is a number of quarter turns about +y; at rotation 0 the item's
+  front faces −z. :func:`front_vector` and :func:`rotation_matrix` are the one source of
+  this convention.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any, Literal
+
+import numpy as np
+from shapely.geometry import LineString, Point, Polygon, box
+from shapely import affinity
+
+__all__ = [
+    "OUTSIDE",
+    "Diagnostic",
+    "Opening",
+    "Wall",
+    "Room",
+    "Door",
+    "Window",
+    "FurnitureItem",
+    "FloorSettings",
+    "FloorPlan",
+    "front_vector",
+    "rotation_matrix",
+]
+
+OUTSIDE = -1
+"""Room id of the outside (the DCEL's unbounded face)."""
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """A message for the user produced while building (shown in the summary and JSON)."""
+
+    level: Literal["info", "warning", "error"]
+    stage: str
+    message: str
+    floor: int | None = None
+    room: int | None = None
+
+    def __str__(self) -> str:
+        where = []
+        if self.floor is not None:
+            where.append(f"floor {self.floor}")
+        if self.room is not None:
+            where.append(f"room {self.room}")
+        prefix = f"[{', '.join(where)}] " if where else ""
+        return f"{self.stage}: {prefix}{self.message}"
+
+
+@dataclass(frozen=True)
+class Opening:
+    """A hole in a wall: ``center`` is the distance (m) of its middle from ``Wall.start``;
+    ``sill`` is the height of its bottom above the walking surface (0 for doors)."""
+
+    kind: Literal["door", "window"]
+    center: float
+    width: float
+    height: float
+    sill: float = 0.0
+
+
+@dataclass(frozen=True)
+class Wall:
+    """A straight wall segment between two DCEL vertices.
+
+    ``rooms`` is ``(left, right)`` seen walking from ``start`` to ``end``; ``right`` is
+    :data:`OUTSIDE` for an outer wall whose outside lies to the right.
+    """
+
+    id: int
+    start: tuple[float, float]
+    end: tuple[float, float]
+    outer: bool
+    rooms: tuple[int, int]
+    thickness: float
+    openings: tuple[Opening, ...] = ()
+
+    @property
+    def length(self) -> float:
+        return math.dist(self.start, self.end)
+
+    @property
+    def direction(self) -> np.ndarray:
+        d = np.subtract(self.end, self.start)
+        return d / np.linalg.norm(d)
+
+    def point_at(self, distance: float) -> tuple[float, float]:
+        """The point ``distance`` metres from ``start`` along the segment."""
+        p = np.asarray(self.start) + self.direction * distance
+        return (float(p[0]), float(p[1]))
+
+    def segment(self) -> LineString:
+        return LineString([self.start, self.end])
+
+    def with_opening(self, opening: Opening) -> "Wall":
+        return replace(self, openings=self.openings + (opening,))
+
+
+@dataclass(frozen=True)
+class Room:
+    """A room: a face of the floor's DCEL. ``type`` is None until ``type_rooms`` runs."""
+
+    id: int
+    polygon: Polygon
+    interior: Polygon
+    type: str | None = None
+
+    @property
+    def area(self) -> float:
+        """Area between wall centre lines (m²), the figure typing rules compare against."""
+        return float(self.polygon.area)
+
+    @property
+    def label(self) -> str:
+        return f"room{self.id}_{self.type}" if self.type else f"room{self.id}"
+
+
+@dataclass(frozen=True)
+class Door:
+    """A door in wall ``wall`` joining ``rooms`` (the second may be :data:`OUTSIDE`).
+
+    ``position`` is the door's centre on the wall centre line. The leaf is hinged at the
+    ``hinge`` end (``"start"`` or ``"end"`` of the wall direction) and swings into
+    ``swing_room`` through a quarter circle of radius ``width``.
+    """
+
+    id: int
+    wall: int
+    rooms: tuple[int, int]
+    position: tuple[float, float]
+    width: float
+    height: float
+    swing_room: int
+    hinge: Literal["start", "end"] = "start"
+    is_front: bool = False
+    reason: Literal["rule", "reachability", "front"] = "rule"
+
+
+@dataclass(frozen=True)
+class Window:
+    """A window in outer wall ``wall`` of room ``room``; ``position`` on the wall line."""
+
+    id: int
+    wall: int
+    room: int
+    position: tuple[float, float]
+    width: float
+    height: float
+    sill: float
+
+
+def rotation_matrix(quarter_turns: int) -> np.ndarray:
+    """3×3 rotation about +y by ``quarter_turns`` × 90° (right-handed), exact integers."""
+    c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][quarter_turns % 4]
+    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]], dtype=float)
+
+
+def front_vector(quarter_turns: int) -> tuple[float, float]:
+    """The item's front direction in plan ``(x, z)`` for a rotation (0 → (0, −1))."""
+    v = rotation_matrix(quarter_turns) @ np.array([0.0, 0.0, -1.0])
+    return (float(v[0]), float(v[2]))
+
+
+@dataclass(frozen=True)
+class FurnitureItem:
+    """A placed item. ``size`` is the model's (width x, height y, depth z) before rotation;
+    ``position`` the centre of its footprint on the walking surface."""
+
+    name: str
+    model: str
+    room: int
+    position: tuple[float, float]
+    rotation: int
+    size: tuple[float, float, float]
+    parent: str | None = None
+    is_detail: bool = False
+    non_collision: bool = False
+
+    @property
+    def front(self) -> tuple[float, float]:
+        return front_vector(self.rotation)
+
+    def footprint(self) -> Polygon:
+        """The item's rectangle in plan, rotated and placed."""
+        w, _, d = self.size
+        rect = box(-w / 2, -d / 2, w / 2, d / 2)
+        rect = affinity.rotate(rect, -90 * (self.rotation % 4), origin=(0, 0))
+        return affinity.translate(rect, *self.position)
+
+
+@dataclass(frozen=True)
+class FloorSettings:
+    """Opening and structure sizes for one floor, in metres."""
+
+    wall_thickness: float = 0.2
+    windows_per_wall: int = 1
+    window_width: float = 1.2
+    window_height: float = 1.2
+    window_sill: float = 0.9
+    door_width: float = 0.9
+    door_height: float = 2.1
+    slab_thickness: float = 0.2
+
+
+@dataclass(frozen=True)
+class FloorPlan:
+    """One storey: rooms, walls, openings, furniture and the DCEL they come from.
+
+    ``elevation`` is the y of the bottom of the floor slab, ``height`` the storey height;
+    the walking surface is at :attr:`floor_y`. ``dcel`` is the half-edge structure built
+    by ``make_floor`` (``cga.operations.floorplan.dcel.DCEL``).
+    """
+
+    index: int
+    elevation: float
+    height: float
+    footprint: Polygon
+    settings: FloorSettings
+    rooms: tuple[Room, ...]
+    walls: tuple[Wall, ...]
+    dcel: Any = None
+    windows: tuple[Window, ...] = ()
+    doors: tuple[Door, ...] = ()
+    furniture: tuple[FurnitureItem, ...] = ()
+    room_graph: Any = None  # networkx.Graph once typed: nodes room ids + OUTSIDE
+    diagnostics: tuple[Diagnostic, ...] = ()
+    is_top: bool = False
+
+    @property
+    def floor_y(self) -> float:
+        return self.elevation + self.settings.slab_thickness
+
+    def room(self, room_id: int) -> Room:
+        for r in self.rooms:
+            if r.id == room_id:
+                return r
+        raise KeyError(room_id)
+
+    def wall(self, wall_id: int) -> Wall:
+        for w in self.walls:
+            if w.id == wall_id:
+                return w
+        raise KeyError(wall_id)
+
+    def walls_of(self, room_id: int) -> list[Wall]:
+        return [w for w in self.walls if room_id in w.rooms]
+
+    def front_door(self) -> Door | None:
+        return next((d for d in self.doors if d.is_front), None)
+
+    def with_changes(self, **changes: Any) -> "FloorPlan":
+        return replace(self, **changes)
+
+    def contains_point(self, x: float, z: float) -> bool:
+        return self.footprint.covers(Point(x, z))

@@ -1,0 +1,123 @@
+"""What an operation is: a declared signature and an ``apply`` that makes child shapes.
+
+The evaluator binds a call's arguments against :attr:`Operation.params` (positional or
+keyword), checks their kinds, converts lengths and areas from grammar units to metres,
+and hands the result to :meth:`Operation.apply` as a plain dict. The operation returns
+:class:`Child` records; the evaluator names them after the successors and builds the
+shapes, so operations never deal with paths, symbols or random-stream bookkeeping.
+
+Parameter kinds (``Param.kind``):
+
+``length``  number in grammar units, converted to metres
+``area``    number in grammar units², converted to m²
+``number``  plain number;  ``count``: non-negative integer;  ``bool``: true/false/0/1
+``string``  quoted string; ``path``: string resolved by :meth:`OperationContext.resolve`
+``axis``    one of "x", "y", "z" (case-insensitive)
+``tuple``   ``a>b>c`` or ``(a, b, c)``; ``Param.items`` gives each element's kind
+``range``   a pair ``(lo, hi)`` of plain numbers, e.g. ``cut_range=(0.35, 0.65)``
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, ClassVar
+
+import numpy as np
+
+from cga.errors import Span
+from cga.model import Diagnostic
+from cga.shape import Geometry, Scope
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cga.model import FloorPlan
+    from cga.shape import Shape
+
+__all__ = ["REQUIRED", "Param", "Child", "OperationContext", "Operation"]
+
+
+class _Required:
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+REQUIRED: Any = _Required()
+"""Default marker of a parameter that must be given."""
+
+
+@dataclass(frozen=True)
+class Param:
+    """One parameter of an operation's signature."""
+
+    name: str
+    kind: str
+    default: Any = REQUIRED
+    items: tuple[str, ...] = ()
+    keyword_only: bool = False
+    doc: str = ""
+
+    @property
+    def required(self) -> bool:
+        return self.default is REQUIRED
+
+
+@dataclass(frozen=True)
+class Child:
+    """A shape an operation produced, bound for successor number ``successor``.
+
+    ``attrs`` are merged into the parent's attributes (e.g. ``{"floor": 1}`` or
+    ``{"index": 3}``); ``plan`` carries a floor plan from the floor operations.
+    """
+
+    successor: int
+    geometry: Geometry
+    scope: Scope
+    attrs: dict[str, Any] = field(default_factory=dict)
+    plan: "FloorPlan | None" = None
+
+
+@dataclass
+class OperationContext:
+    """What an operation may use besides its arguments.
+
+    ``rng`` is this shape's own random stream (derived from the seed and the shape's
+    path), ``units`` the grammar's metres per unit, ``resolve`` finds a path argument
+    (next to the grammar, then in the shipped ``rules/``), ``report`` records a
+    diagnostic for the summary, ``span`` is the call's position for error messages and
+    ``cache`` is shared by all operations of one build (models are loaded once).
+    """
+
+    rng: np.random.Generator
+    units: float
+    resolve: Callable[[str, str], Any]
+    report: Callable[[Diagnostic], None]
+    span: Span | None
+    successor_count: int
+    cache: dict[str, Any] = field(default_factory=dict)
+
+
+class Operation:
+    """Base class of grammar operations.
+
+    Subclasses set ``name``, ``params``, the accepted successor counts and implement
+    :meth:`apply`. ``min_successors``/``max_successors`` let the evaluator report a
+    successor-count mismatch at the rule instead of deep inside the operation
+    (``max_successors=None`` means any number).
+    """
+
+    name: ClassVar[str]
+    params: ClassVar[tuple[Param, ...]] = ()
+    min_successors: ClassVar[int] = 1
+    max_successors: ClassVar[int | None] = 1
+    takes_split_parts: ClassVar[bool] = False
+    doc: ClassVar[str] = ""
+
+    def apply(self, shape: "Shape", args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        raise NotImplementedError
+
+    def signature(self) -> str:
+        """Human-readable signature for error messages, e.g. ``extrude(height)``."""
+        parts = []
+        for p in self.params:
+            text = p.name if p.required else f"{p.name}={p.default!r}"
+            parts.append(text)
+        return f"{self.name}({', '.join(parts)})"
