@@ -15,7 +15,25 @@ from typing import Any
 from .model import Diagnostic, FloorPlan
 from .shape import Shape
 
-__all__ = ["Scene"]
+__all__ = ["Scene", "SceneNode"]
+
+
+@dataclass(frozen=True)
+class SceneNode:
+    """A named piece of output geometry, in world coordinates (metres, y up).
+
+    ``path`` is the semantic node name, e.g. ``floor1/room3_Kitchen/wall2`` or
+    ``floor0/room1_Livingroom/furniture/sofa``. ``kind`` is one of ``wall``, ``slab``,
+    ``ceiling``, ``furniture``, ``mass``, ``face``. ``parts`` are the convex pieces of a
+    furniture item (physics uses them as a compound body); ``static`` bodies do not move.
+    """
+
+    path: str
+    kind: str
+    mesh: Any  # trimesh.Trimesh
+    extras: dict[str, Any] = field(default_factory=dict)
+    static: bool = True
+    parts: tuple[Any, ...] = ()
 
 
 @dataclass
