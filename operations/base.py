@@ -84,6 +84,8 @@ class OperationContext:
     (next to the grammar, then in the shipped ``rules/``), ``report`` records a
     diagnostic for the summary, ``span`` is the call's position for error messages and
     ``cache`` is shared by all operations of one build (models are loaded once).
+    ``seed`` is the build seed, for operations that want the same draw on every shape
+    (``make_floor(..., same_layout=true)``).
     """
 
     rng: np.random.Generator
@@ -93,6 +95,7 @@ class OperationContext:
     span: Span | None
     successor_count: int
     cache: dict[str, Any] = field(default_factory=dict)
+    seed: int = 0
 
 
 class Operation:
