@@ -184,7 +184,8 @@ def front_vector(quarter_turns: int) -> tuple[float, float]:
 @dataclass(frozen=True)
 class FurnitureItem:
     """A placed item. ``size`` is the model's (width x, height y, depth z) before rotation;
-    ``position`` the centre of its footprint on the walking surface."""
+    ``position`` the centre of its footprint on the walking surface. ``elevation`` lifts
+    the model's origin above the walking surface (a window item: its opening's sill)."""
 
     name: str
     model: str
@@ -195,6 +196,7 @@ class FurnitureItem:
     parent: str | None = None
     is_detail: bool = False
     non_collision: bool = False
+    elevation: float = 0.0
 
     @property
     def front(self) -> tuple[float, float]:
