@@ -1,0 +1,1 @@
+"""Furniture: the model library and the placement of items in typed rooms (DESIGN §8)."""

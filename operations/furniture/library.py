@@ -1,0 +1,371 @@
+"""The furniture model library: find a model by name, load it once, place it in a plan.
+
+``add_furniture`` needs each model's size, the physics check its convex parts and mass,
+the exporters its coloured mesh. All of them ask a :class:`ModelLibrary`, which searches
+the user's folders before the models shipped in ``cga.models`` and loads each file once.
+
+Model files (DESIGN §8) are Wavefront OBJ in metres, y up, front toward −z, origin at the
+centre of the footprint on the floor. Each OBJ group (``g``) or object (``o``) is one
+convex part, so physics can use the parts as a compound body directly. Optional header
+comments give the physical and visual properties::
+
+    # density 450          kg/m³ of the parts' material (mass = parts' volume × density)
+    # color 0.55 0.38 0.22 the model's main colour, linear RGB in 0..1
+
+Vertex colours (``v x y z r g b``) give each part its own colour; trimesh loads them and
+the glTF exporter keeps them.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from importlib.resources import files
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from cga.errors import CGAError, ResourceNotFoundError
+from cga.model import FloorPlan, FurnitureItem, rotation_matrix
+from cga.scene import SceneNode
+
+__all__ = [
+    "DEFAULT_COLOR",
+    "DEFAULT_DENSITY",
+    "FurnitureModel",
+    "ModelFileError",
+    "ModelLibrary",
+    "default_library",
+    "grammar_model_dirs",
+    "is_convex_part",
+    "item_node",
+    "item_transform",
+    "load_model",
+    "name_candidates",
+    "normalize_name",
+    "part_volume",
+    "shipped_models_dir",
+]
+
+DEFAULT_DENSITY = 500.0
+"""kg/m³ of a model whose file declares no ``# density`` (light timber)."""
+
+DEFAULT_COLOR = (0.7, 0.7, 0.7)
+"""Main colour of a model whose file declares no ``# color``."""
+
+_CONVEX_TOLERANCE = 1e-3
+"""A part is convex when its volume is within this fraction of its convex hull's."""
+
+_SIZE_TOLERANCE = 1e-9
+"""Item and model sizes closer than this (m) need no scaling."""
+
+_SEPARATORS = re.compile(r"[\s_\-]+")
+_TRAILING_NUMBER = re.compile(r"\d+$")
+_HEADER = re.compile(r"^#\s*(density|color)\b(.*)$", re.IGNORECASE)
+
+
+class ModelFileError(CGAError):
+    """A model file exists but cannot be used (unreadable, no faces, bad header)."""
+
+    def __init__(self, path: Path, message: str):
+        super().__init__(f"{path}: {message}")
+        self.path = path
+
+
+def normalize_name(name: str) -> str:
+    """The canonical form of a model name: lower case without spaces, ``_`` or ``-``.
+
+    ``"Double Bed"``, ``"double_bed"`` and ``"doubleBed"`` all give ``"doublebed"``.
+    """
+    return _SEPARATORS.sub("", name).lower()
+
+
+def name_candidates(name: str) -> tuple[str, ...]:
+    """File stems tried for ``name``, in order: the full name, then without a numeric suffix.
+
+    A numeric suffix repeats a model in a rule table (``chair1`` is another ``chair``),
+    but a model whose own name ends in digits is still found, as the full name comes first.
+    """
+    full = normalize_name(name)
+    base = _TRAILING_NUMBER.sub("", full)
+    return (full, base) if base and base != full else (full,)
+
+
+def part_volume(part: trimesh.Trimesh) -> float:
+    """The part's volume (m³), or its convex hull's when it does not bound a volume."""
+    if part.is_volume:
+        return float(part.volume)
+    return float(part.convex_hull.volume)
+
+
+def is_convex_part(part: trimesh.Trimesh) -> bool:
+    """Whether ``part`` is a closed convex solid (watertight, volume ≈ hull volume)."""
+    if not part.is_watertight or not part.is_volume:
+        return False
+    hull = float(part.convex_hull.volume)
+    return abs(hull - float(part.volume)) <= _CONVEX_TOLERANCE * hull
+
+
+@dataclass(frozen=True, eq=False)
+class FurnitureModel:
+    """A loaded model in its own frame (metres, y up, front toward −z, origin on the floor
+    at the centre of the footprint).
+
+    ``size`` is the axis-aligned extent ``(width x, height y, depth z)``. ``parts`` are the
+    pieces of the model (one per OBJ group), ``mesh`` is all parts in one mesh; both carry
+    per-vertex colours and are shared by every user of the library, so treat them as
+    read-only (copy before transforming). ``convex_parts`` is False when some part is not
+    a closed convex solid; physics then decomposes the mesh itself (V-HACD).
+    """
+
+    name: str
+    size: tuple[float, float, float]
+    parts: tuple[trimesh.Trimesh, ...]
+    mesh: trimesh.Trimesh
+    color: tuple[float, float, float]
+    density: float
+    path: Path
+    convex_parts: bool = True
+
+    @property
+    def volume(self) -> float:
+        """Sum of the parts' volumes (m³); see :func:`part_volume`."""
+        return sum(part_volume(p) for p in self.parts)
+
+    @property
+    def mass(self) -> float:
+        """Mass at the model's own size (kg): volume × density."""
+        return self.volume * self.density
+
+
+class ModelLibrary:
+    """Finds models by name in ``search_dirs`` (in order) and loads each file once.
+
+    Parameters
+    ----------
+    search_dirs
+        Folders holding ``<name>.obj`` files, most specific first. Folders that do not
+        exist are skipped (and still listed when a model is not found).
+
+    Notes
+    -----
+    Names match case-insensitively ignoring spaces, ``_`` and ``-``; a trailing number is
+    dropped when the full name is not found in any folder (:func:`name_candidates`), so
+    ``Bookshelf2`` finds ``bookshelf.obj`` unless some folder has ``bookshelf2.obj``.
+    """
+
+    def __init__(self, search_dirs: Sequence[Path]):
+        self.search_dirs: tuple[Path, ...] = tuple(Path(d) for d in search_dirs)
+        self._index: dict[Path, dict[str, Path]] = {}
+        self._by_path: dict[Path, FurnitureModel] = {}
+        self._by_name: dict[str, FurnitureModel] = {}
+
+    def get(self, name: str) -> FurnitureModel:
+        """The model called ``name``.
+
+        Raises
+        ------
+        ResourceNotFoundError
+            No folder holds a matching file; the message lists every folder searched.
+        ModelFileError
+            The file found cannot be loaded.
+        """
+        key = normalize_name(name)
+        model = self._by_name.get(key)
+        if model is None:
+            path = self.find(name)
+            model = self._by_path.get(path)
+            if model is None:
+                model = load_model(path)
+                self._by_path[path] = model
+            self._by_name[key] = model
+        return model
+
+    def find(self, name: str) -> Path:
+        """The file that :meth:`get` loads for ``name`` (see the class notes).
+
+        Raises
+        ------
+        ResourceNotFoundError
+            No folder holds a matching file.
+        """
+        for stem in name_candidates(name):
+            for folder in self.search_dirs:
+                path = self._folder_index(folder).get(stem)
+                if path is not None:
+                    return path
+        raise ResourceNotFoundError("furniture model", name,
+                                    [str(d) for d in self.search_dirs])
+
+    def names(self) -> list[str]:
+        """Every model name available, sorted (earlier folders shadow later ones)."""
+        found: set[str] = set()
+        for folder in self.search_dirs:
+            found.update(self._folder_index(folder))
+        return sorted(found)
+
+    def _folder_index(self, folder: Path) -> dict[str, Path]:
+        index = self._index.get(folder)
+        if index is None:
+            index = {}
+            if folder.is_dir():
+                for path in sorted(folder.iterdir()):
+                    if path.suffix.lower() == ".obj" and path.is_file():
+                        index.setdefault(normalize_name(path.stem), path)
+            self._index[folder] = index
+        return index
+
+
+def load_model(path: Path) -> FurnitureModel:
+    """Load one OBJ file as a :class:`FurnitureModel` (no caching; use a library).
+
+    Each group or object of the file becomes a part (a file without either is one part).
+    The parts are moved so the model's lowest point is at y = 0 and the centre of its
+    footprint at the origin; files made to the convention are not changed.
+
+    Raises
+    ------
+    ModelFileError
+        The file cannot be read or parsed, has no faces, or has a bad header value.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+        scene = trimesh.load_scene(str(path), file_type="obj", split_groups=True,
+                                   split_objects=True, group_material=False)
+    except (OSError, ValueError, IndexError) as exc:
+        raise ModelFileError(path, f"cannot read the OBJ file ({exc})") from exc
+    density, color = _read_header(path, text)
+    meshes = [scene.geometry[key] for key in sorted(scene.geometry, key=_natural_key)]
+    parts = [m for m in meshes if isinstance(m, trimesh.Trimesh) and len(m.faces)]
+    if not parts:
+        raise ModelFileError(path, "the file has no faces")
+    mesh = trimesh.util.concatenate(parts)
+    lo, hi = mesh.bounds
+    offset = -np.array([(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2])
+    if np.any(offset != 0):
+        move = trimesh.transformations.translation_matrix(offset)
+        parts = [p.copy().apply_transform(move) for p in parts]
+        mesh = mesh.copy().apply_transform(move)
+    size = tuple(float(e) for e in mesh.extents)
+    if min(size) <= 0:
+        raise ModelFileError(path, f"the model is flat (size {size[0]:g} × {size[1]:g} × "
+                                   f"{size[2]:g} m); every extent must be positive")
+    return FurnitureModel(
+        name=normalize_name(path.stem),
+        size=(size[0], size[1], size[2]),
+        parts=tuple(parts),
+        mesh=mesh,
+        color=color,
+        density=density,
+        path=path,
+        convex_parts=all(is_convex_part(p) for p in parts),
+    )
+
+
+def _read_header(path: Path, text: str) -> tuple[float, tuple[float, float, float]]:
+    density, color = DEFAULT_DENSITY, DEFAULT_COLOR
+    for number, line in enumerate(text.splitlines(), start=1):
+        match = _HEADER.match(line.strip())
+        if match is None:
+            continue
+        key, values = match.group(1).lower(), match.group(2).split()
+        try:
+            numbers = [float(v) for v in values]
+        except ValueError:
+            numbers = []
+        if key == "density":
+            if len(numbers) != 1 or not numbers[0] > 0:
+                raise ModelFileError(path, f"line {number}: '# density' needs one positive "
+                                           f"number in kg/m³, got {match.group(2).strip()!r}")
+            density = numbers[0]
+        else:
+            if len(numbers) != 3 or not all(0 <= c <= 1 for c in numbers):
+                raise ModelFileError(path, f"line {number}: '# color' needs three numbers "
+                                           f"in 0..1 (r g b), got {match.group(2).strip()!r}")
+            color = (numbers[0], numbers[1], numbers[2])
+    return density, color
+
+
+def _natural_key(name: str) -> list[object]:
+    return [(0, int(t)) if t.isdigit() else (1, t) for t in re.split(r"(\d+)", name) if t]
+
+
+def shipped_models_dir() -> Path:
+    """The folder of the models shipped with cga (package ``cga.models``)."""
+    return Path(str(files("cga.models")))
+
+
+def grammar_model_dirs(grammar_file: Path) -> list[Path]:
+    """The folders a grammar's own models live in: its folder and its ``models/`` subfolder."""
+    folder = Path(grammar_file).resolve().parent
+    return [folder, folder / "models"]
+
+
+def default_library(extra_dirs: Iterable[Path] = ()) -> ModelLibrary:
+    """A library searching ``extra_dirs`` (in order) and then the shipped models."""
+    return ModelLibrary([*map(Path, extra_dirs), shipped_models_dir()])
+
+
+def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -> np.ndarray:
+    """4×4 matrix taking ``model``'s frame to the world pose of ``item``.
+
+    The model is scaled per axis to ``item.size`` (when that differs from the model's
+    size, e.g. a door leaf sized to its opening), turned by ``item.rotation`` quarter
+    turns about +y and moved to ``(x, floor_y + item.elevation, z)``.
+
+    Raises
+    ------
+    ValueError
+        ``item.size`` has an extent that is not positive.
+    """
+    target = np.asarray(item.size, dtype=float)
+    if target.shape != (3,) or not np.all(target > 0):
+        raise ValueError(f"furniture item {item.name!r}: size {item.size} must be three "
+                         f"positive extents (width, height, depth) in metres")
+    own = np.asarray(model.size, dtype=float)
+    scale = np.where(np.abs(target - own) <= _SIZE_TOLERANCE, 1.0, target / own)
+    matrix = np.eye(4)
+    matrix[:3, :3] = rotation_matrix(item.rotation) @ np.diag(scale)
+    matrix[:3, 3] = (item.position[0], floor_y + item.elevation, item.position[1])
+    return matrix
+
+
+def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> SceneNode:
+    """The scene node of a placed furniture item: its model posed in world coordinates.
+
+    The node is named ``floor{i}/room{id}_{Type}/furniture/{name}`` (``room{id}`` when the
+    room is untyped). Solid items are dynamic; details (doors, windows) and
+    non-colliding items (rugs) are static. ``parts`` are the posed convex parts, ``extras``
+    carry the semantic labels and the mass (posed volume × the model's density).
+
+    Raises
+    ------
+    ResourceNotFoundError
+        The item's model is not in the library.
+    """
+    model = library.get(item.model)
+    matrix = item_transform(item, model, plan.floor_y)
+    parts = tuple(p.copy().apply_transform(matrix) for p in model.parts)
+    mesh = model.mesh.copy().apply_transform(matrix)
+    room = plan.room(item.room)
+    volume = sum(part_volume(p) for p in parts)
+    return SceneNode(
+        path=f"floor{plan.index}/{room.label}/furniture/{item.name}",
+        kind="furniture",
+        mesh=mesh,
+        extras={
+            "model": model.name,
+            "room": item.room,
+            "name": item.name,
+            "parent": item.parent,
+            "rotation": item.rotation,
+            "density": model.density,
+            "mass": volume * model.density,
+            "convex_parts": model.convex_parts,
+        },
+        static=item.is_detail or item.non_collision,
+        parts=parts,
+    )
