@@ -85,7 +85,9 @@ class OperationContext:
     diagnostic for the summary, ``span`` is the call's position for error messages and
     ``cache`` is shared by all operations of one build (models are loaded once).
     ``seed`` is the build seed, for operations that want the same draw on every shape
-    (``make_floor(..., same_layout=true)``).
+    (``make_floor(..., same_layout=true)``). ``strict`` is the build's strict mode: an
+    operation that would repair a problem and report it (e.g. add a door so every room
+    is reachable) fails instead.
     """
 
     rng: np.random.Generator
@@ -96,6 +98,7 @@ class OperationContext:
     successor_count: int
     cache: dict[str, Any] = field(default_factory=dict)
     seed: int = 0
+    strict: bool = False
 
 
 class Operation:
