@@ -21,7 +21,6 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from importlib.resources import files
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +28,7 @@ import trimesh
 
 from cga.errors import CGAError, ResourceNotFoundError
 from cga.model import FloorPlan, FurnitureItem, rotation_matrix
+from cga.resources import shipped_dir
 from cga.scene import SceneNode
 
 __all__ = [
@@ -46,7 +46,6 @@ __all__ = [
     "name_candidates",
     "normalize_name",
     "part_volume",
-    "shipped_models_dir",
 ]
 
 DEFAULT_DENSITY = 500.0
@@ -293,11 +292,6 @@ def _natural_key(name: str) -> list[object]:
     return [(0, int(t)) if t.isdigit() else (1, t) for t in re.split(r"(\d+)", name) if t]
 
 
-def shipped_models_dir() -> Path:
-    """The folder of the models shipped with cga (package ``cga.models``)."""
-    return Path(str(files("cga.models")))
-
-
 def grammar_model_dirs(grammar_file: Path) -> list[Path]:
     """The folders a grammar's own models live in: its folder and its ``models/`` subfolder."""
     folder = Path(grammar_file).resolve().parent
@@ -305,8 +299,10 @@ def grammar_model_dirs(grammar_file: Path) -> list[Path]:
 
 
 def default_library(extra_dirs: Iterable[Path] = ()) -> ModelLibrary:
-    """A library searching ``extra_dirs`` (in order) and then the shipped models."""
-    return ModelLibrary([*map(Path, extra_dirs), shipped_models_dir()])
+    """A library searching ``extra_dirs`` (in order) and then the shipped models
+    (package ``cga.models``, found with :func:`cga.resources.shipped_dir`)."""
+    shipped = shipped_dir("cga.models")
+    return ModelLibrary([*map(Path, extra_dirs), *([shipped] if shipped else [])])
 
 
 def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -> np.ndarray:
