@@ -1,0 +1,335 @@
+"""A tiny 2D drawing model with two renderers: SVG text and an anti-aliased PNG.
+
+The plan exporter composes a :class:`Drawing` from a handful of primitives in paper
+coordinates (pixels, y down) and hands it to :func:`render_svg` (hand-written XML; SVG is
+just text) and :func:`render_png` (Pillow, drawn at ``supersample`` times the size and
+downsampled with a Lanczos filter, which gives smooth edges without matplotlib).
+
+Both renderers see the same primitives, so the SVG and the PNG of a plan show exactly
+the same thing. Text is measured with the PNG's font (DejaVu Sans, Pillow's own font when
+DejaVu is not installed) so layout decisions hold for both.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from functools import cache
+from typing import Literal, Union
+from xml.sax.saxutils import escape, quoteattr
+
+from PIL import Image, ImageDraw, ImageFont
+
+__all__ = [
+    "Point",
+    "Style",
+    "Area",
+    "Polyline",
+    "Arc",
+    "Text",
+    "Item",
+    "Drawing",
+    "text_width",
+    "render_svg",
+    "render_png",
+]
+
+Point = tuple[float, float]
+"""A paper point (x right, y down) in pixels."""
+
+_FONT_FAMILY = "'DejaVu Sans', Verdana, Arial, sans-serif"
+_ARC_SEGMENTS_PER_RADIAN = 12
+
+
+@dataclass(frozen=True)
+class Style:
+    """How a primitive is painted. Colours are ``#rrggbb``; ``dash`` is an on/off
+    pattern in pixels; ``opacity`` applies to the fill."""
+
+    fill: str | None = None
+    stroke: str | None = None
+    width: float = 1.0
+    dash: tuple[float, ...] = ()
+    opacity: float = 1.0
+
+
+@dataclass(frozen=True)
+class Area:
+    """A filled region: the first ring is the outline, further rings are holes."""
+
+    rings: tuple[tuple[Point, ...], ...]
+    style: Style
+    css_class: str = ""
+
+
+@dataclass(frozen=True)
+class Polyline:
+    """An open (or ``closed``) line through ``points``."""
+
+    points: tuple[Point, ...]
+    style: Style
+    closed: bool = False
+    css_class: str = ""
+
+
+@dataclass(frozen=True)
+class Arc:
+    """A circular arc around ``center`` from angle ``start`` to ``end`` (radians, paper
+    frame: 0 along +x, π/2 along +y, i.e. clockwise on screen); |end − start| < π."""
+
+    center: Point
+    radius: float
+    start: float
+    end: float
+    style: Style
+    css_class: str = ""
+
+    def points(self) -> list[Point]:
+        steps = max(2, math.ceil(abs(self.end - self.start) * _ARC_SEGMENTS_PER_RADIAN))
+        cx, cy = self.center
+        return [(cx + self.radius * math.cos(a), cy + self.radius * math.sin(a))
+                for a in (self.start + (self.end - self.start) * k / steps
+                          for k in range(steps + 1))]
+
+
+@dataclass(frozen=True)
+class Text:
+    """A line of text; ``position`` is the anchor point on the baseline, ``angle`` 0
+    (horizontal) or 90 (reading bottom to top)."""
+
+    position: Point
+    text: str
+    size: float
+    fill: str = "#222222"
+    anchor: Literal["start", "middle", "end"] = "middle"
+    bold: bool = False
+    angle: Literal[0, 90] = 0
+    css_class: str = ""
+
+
+Item = Union[Area, Polyline, Arc, Text]
+
+
+@dataclass
+class Drawing:
+    """A page: its size in pixels, a background colour, a title and named layers of
+    primitives painted in insertion order."""
+
+    width: float
+    height: float
+    title: str
+    background: str = "#ffffff"
+    layers: dict[str, list[Item]] = field(default_factory=dict)
+
+    def add(self, layer: str, item: Item) -> None:
+        self.layers.setdefault(layer, []).append(item)
+
+
+# -- fonts ------------------------------------------------------------------------------
+
+@cache
+def _font(size_px: int, bold: bool) -> ImageFont.FreeTypeFont | ImageFont.ImageFont:
+    name = "DejaVuSans-Bold.ttf" if bold else "DejaVuSans.ttf"
+    try:
+        return ImageFont.truetype(name, size_px)
+    except OSError:  # DejaVu not installed: Pillow's bundled font keeps output possible
+        return ImageFont.load_default(size_px)
+
+
+def text_width(text: str, size: float, *, bold: bool = False) -> float:
+    """Width in pixels of ``text`` at font size ``size`` (pixels)."""
+    scale = 8
+    return _font(max(1, round(size * scale)), bold).getlength(text) / scale
+
+
+# -- SVG --------------------------------------------------------------------------------
+
+def _num(value: float) -> str:
+    text = f"{value:.2f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def _path_data(rings: Sequence[Sequence[Point]], closed: bool) -> str:
+    parts = []
+    for ring in rings:
+        head, *rest = ring
+        parts.append(f"M{_num(head[0])} {_num(head[1])}"
+                     + "".join(f"L{_num(x)} {_num(y)}" for x, y in rest)
+                     + ("Z" if closed else ""))
+    return "".join(parts)
+
+
+def _style_attrs(style: Style) -> str:
+    attrs = [f'fill="{style.fill or "none"}"']
+    if style.fill and style.opacity < 1.0:
+        attrs.append(f'fill-opacity="{_num(style.opacity)}"')
+    if style.stroke:
+        attrs.append(f'stroke="{style.stroke}" stroke-width="{_num(style.width)}" '
+                     f'stroke-linejoin="round" stroke-linecap="round"')
+        if style.dash:
+            attrs.append(f'stroke-dasharray="{" ".join(_num(d) for d in style.dash)}"')
+    return " ".join(attrs)
+
+
+def _class_attr(css_class: str) -> str:
+    return f" class={quoteattr(css_class)}" if css_class else ""
+
+
+def _svg_item(item: Item) -> str:
+    if isinstance(item, Area):
+        return (f'<path{_class_attr(item.css_class)} d="{_path_data(item.rings, True)}" '
+                f'fill-rule="evenodd" {_style_attrs(item.style)}/>')
+    if isinstance(item, Polyline):
+        return (f'<path{_class_attr(item.css_class)} d="{_path_data([item.points], item.closed)}" '
+                f'{_style_attrs(item.style)}/>')
+    if isinstance(item, Arc):
+        (x0, y0), (x1, y1) = item.points()[0], item.points()[-1]
+        sweep = 1 if item.end > item.start else 0
+        r = _num(item.radius)
+        return (f'<path{_class_attr(item.css_class)} d="M{_num(x0)} {_num(y0)}A{r} {r} 0 0 '
+                f'{sweep} {_num(x1)} {_num(y1)}" {_style_attrs(item.style)}/>')
+    x, y = item.position
+    rotate = f' transform="rotate(-90 {_num(x)} {_num(y)})"' if item.angle == 90 else ""
+    weight = ' font-weight="bold"' if item.bold else ""
+    return (f'<text{_class_attr(item.css_class)} x="{_num(x)}" y="{_num(y)}" '
+            f'font-size="{_num(item.size)}"{weight} text-anchor="{item.anchor}" '
+            f'fill="{item.fill}"{rotate}>{escape(item.text)}</text>')
+
+
+def render_svg(drawing: Drawing) -> str:
+    """The drawing as a standalone SVG 1.1 document (UTF-8 text)."""
+    w, h = _num(drawing.width), _num(drawing.height)
+    lines = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{w}" height="{h}" '
+        f'viewBox="0 0 {w} {h}" font-family="{_FONT_FAMILY}">',
+        f"<title>{escape(drawing.title)}</title>",
+        f'<rect width="{w}" height="{h}" fill="{drawing.background}"/>',
+    ]
+    for name, items in drawing.layers.items():
+        lines.append(f"<g id={quoteattr(name)}>")
+        lines.extend(_svg_item(item) for item in items)
+        lines.append("</g>")
+    lines.append("</svg>")
+    return "\n".join(lines) + "\n"
+
+
+# -- PNG --------------------------------------------------------------------------------
+
+def _rgba(color: str, opacity: float = 1.0) -> tuple[int, int, int, int]:
+    return (int(color[1:3], 16), int(color[3:5], 16), int(color[5:7], 16), round(255 * opacity))
+
+
+def _dashes(points: Sequence[Point], pattern: Sequence[float]) -> list[list[Point]]:
+    """Split a polyline into the 'on' pieces of a dash pattern."""
+    pieces: list[list[Point]] = []
+    index, left, on = 0, pattern[0], True
+    current: list[Point] = [points[0]]
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        length, done = math.hypot(x1 - x0, y1 - y0), 0.0
+        while length - done > left:
+            done += left
+            t = done / length
+            p = (x0 + (x1 - x0) * t, y0 + (y1 - y0) * t)
+            if on:
+                pieces.append(current + [p])
+            current = [p]
+            on = not on
+            index = (index + 1) % len(pattern)
+            left = pattern[index]
+        left -= length - done
+        current.append((x1, y1))
+    if on and len(current) > 1:
+        pieces.append(current)
+    return pieces
+
+
+class _PngPainter:
+    def __init__(self, drawing: Drawing, scale: float):
+        self.scale = scale
+        size = (round(drawing.width * scale), round(drawing.height * scale))
+        self.image = Image.new("RGBA", size, _rgba(drawing.background))
+        self.draw = ImageDraw.Draw(self.image, "RGBA")
+
+    def _pts(self, points: Sequence[Point]) -> list[Point]:
+        return [(x * self.scale, y * self.scale) for x, y in points]
+
+    def _stroke(self, points: Sequence[Point], style: Style) -> None:
+        if not style.stroke or len(points) < 2:
+            return
+        width = max(1, round(style.width * self.scale))
+        pieces = (_dashes(points, [d * self.scale for d in style.dash]) if style.dash
+                  else [list(points)])
+        for piece in pieces:
+            self.draw.line(piece, fill=_rgba(style.stroke), width=width, joint="curve")
+            if width > 2:  # round caps, as in the SVG
+                for x, y in (piece[0], piece[-1]):
+                    r = width / 2
+                    self.draw.ellipse((x - r, y - r, x + r, y + r), fill=_rgba(style.stroke))
+
+    def area(self, item: Area) -> None:
+        rings = [self._pts(r) for r in item.rings]
+        if item.style.fill:
+            fill = _rgba(item.style.fill, item.style.opacity)
+            if len(rings) == 1:
+                self.draw.polygon(rings[0], fill=fill)
+            else:  # holes: paint through a mask
+                mask = Image.new("L", self.image.size, 0)
+                mask_draw = ImageDraw.Draw(mask)
+                mask_draw.polygon(rings[0], fill=255)
+                for hole in rings[1:]:
+                    mask_draw.polygon(hole, fill=0)
+                layer = Image.new("RGBA", self.image.size, fill)
+                self.image.paste(layer, (0, 0), Image.composite(
+                    Image.new("L", mask.size, fill[3]), mask, mask))
+        for ring in rings:
+            self._stroke(ring + ring[:1], item.style)
+
+    def polyline(self, item: Polyline) -> None:
+        points = list(item.points) + ([item.points[0]] if item.closed else [])
+        self._stroke(self._pts(points), item.style)
+
+    def arc(self, item: Arc) -> None:
+        self._stroke(self._pts(item.points()), item.style)
+
+    def text(self, item: Text) -> None:
+        font = _font(max(1, round(item.size * self.scale)), item.bold)
+        anchor = {"start": "ls", "middle": "ms", "end": "rs"}[item.anchor]
+        x, y = item.position[0] * self.scale, item.position[1] * self.scale
+        if item.angle == 0:
+            self.draw.text((x, y), item.text, font=font, fill=_rgba(item.fill), anchor=anchor)
+            return
+        # draw horizontally on a scratch image around the anchor, turn it, paste it back
+        left, top, right, bottom = font.getbbox(item.text, anchor=anchor)
+        pad = 2
+        scratch = Image.new("RGBA", (right - left + 2 * pad, bottom - top + 2 * pad), (0, 0, 0, 0))
+        ImageDraw.Draw(scratch).text((pad - left, pad - top), item.text, font=font,
+                                     fill=_rgba(item.fill), anchor=anchor)
+        turned = scratch.rotate(90, expand=True)
+        # the anchor sat at (pad - left, pad - top) in the scratch image; after a
+        # counter-clockwise quarter turn it sits at (pad - top, width - pad + left)
+        ax, ay = pad - top, scratch.width - (pad - left)
+        self.image.alpha_composite(turned, (round(x - ax), round(y - ay)))
+
+
+def render_png(drawing: Drawing, *, supersample: int = 3) -> bytes:
+    """The drawing as PNG bytes (RGB), anti-aliased by drawing at ``supersample`` × size
+    and downsampling with a Lanczos filter."""
+    painter = _PngPainter(drawing, supersample)
+    for items in drawing.layers.values():
+        for item in items:
+            if isinstance(item, Area):
+                painter.area(item)
+            elif isinstance(item, Polyline):
+                painter.polyline(item)
+            elif isinstance(item, Arc):
+                painter.arc(item)
+            else:
+                painter.text(item)
+    final = painter.image.convert("RGB").resize(
+        (round(drawing.width), round(drawing.height)), Image.Resampling.LANCZOS)
+    buffer = io.BytesIO()
+    final.save(buffer, format="PNG", optimize=True)
+    return buffer.getvalue()

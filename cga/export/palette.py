@@ -1,0 +1,96 @@
+"""Colours shared by the exporters: room types on plans, materials in OBJ/URDF/SDF.
+
+Common room types get fixed soft colours so plans of different builds read alike (a
+kitchen is always the same yellow); any other type gets a colour derived from a hash
+of its name, so it is stable across runs and machines. Meshes are coloured by node
+kind, furniture by its model's ``color`` extra when the model declares one.
+"""
+
+from __future__ import annotations
+
+import colorsys
+import hashlib
+from collections.abc import Mapping
+from typing import Any
+
+__all__ = [
+    "RGB",
+    "ROOM_COLORS",
+    "UNTYPED_ROOM_COLOR",
+    "KIND_COLORS",
+    "room_color",
+    "node_color",
+    "hex_color",
+]
+
+RGB = tuple[float, float, float]
+"""A colour as (r, g, b), each 0..1 (sRGB)."""
+
+
+def _hex(code: str) -> RGB:
+    return tuple(int(code[i:i + 2], 16) / 255.0 for i in (1, 3, 5))  # type: ignore[return-value]
+
+
+ROOM_COLORS: dict[str, RGB] = {
+    "livingroom": _hex("#f3dcb2"),
+    "kitchen": _hex("#f7eba0"),
+    "diningroom": _hex("#f5d3a6"),
+    "bedroom": _hex("#c9dcf2"),
+    "childroom": _hex("#d6cdf0"),
+    "bathroom": _hex("#b8e3e0"),
+    "toilet": _hex("#c4e6ec"),
+    "laundryroom": _hex("#d3e8d0"),
+    "storageroom": _hex("#dedbd2"),
+    "office": _hex("#e3d3ea"),
+    "corridor": _hex("#ece8e1"),
+    "hall": _hex("#ece8e1"),
+    "commonroom": _hex("#e6e2d6"),
+}
+"""Plan colours of common room types, keyed by lower-case type name."""
+
+UNTYPED_ROOM_COLOR: RGB = _hex("#f2f2f0")
+"""Plan colour of a room that has no type (``type_rooms`` did not run)."""
+
+KIND_COLORS: dict[str, RGB] = {
+    "wall": _hex("#e8e4dc"),
+    "slab": _hex("#b9b2a6"),
+    "ceiling": _hex("#f4f2ee"),
+    "furniture": _hex("#a8865f"),
+    "mass": _hex("#d9d4ca"),
+    "face": _hex("#cfc9bd"),
+}
+"""Mesh colours by :class:`cga.scene.SceneNode` kind."""
+
+_OTHER_KIND_COLOR: RGB = _hex("#c8c8c8")
+
+
+def room_color(room_type: str | None) -> RGB:
+    """The plan colour of a room type (case-insensitive).
+
+    Types in :data:`ROOM_COLORS` get their fixed colour; other names a pastel whose hue
+    comes from the MD5 of the lower-case name (stable everywhere); ``None`` gets
+    :data:`UNTYPED_ROOM_COLOR`.
+    """
+    if room_type is None:
+        return UNTYPED_ROOM_COLOR
+    key = room_type.lower()
+    if key in ROOM_COLORS:
+        return ROOM_COLORS[key]
+    digest = hashlib.md5(key.encode("utf-8")).digest()
+    hue = int.from_bytes(digest[:2], "big") / 65536.0
+    return colorsys.hls_to_rgb(hue, 0.86, 0.55)
+
+
+def node_color(kind: str, extras: Mapping[str, Any]) -> RGB:
+    """The display colour of a scene node: its ``color`` extra (three numbers 0..1) when
+    present, else the colour of its kind."""
+    given = extras.get("color")
+    if given is not None:
+        r, g, b = (float(c) for c in given)
+        return (r, g, b)
+    return KIND_COLORS.get(kind, _OTHER_KIND_COLOR)
+
+
+def hex_color(color: RGB) -> str:
+    """``#rrggbb`` for a colour (SVG, legends)."""
+    return "#" + "".join(f"{round(max(0.0, min(1.0, c)) * 255):02x}" for c in color)

@@ -1,0 +1,451 @@
+"""Floor plans, ``<name>.floor{N}.svg`` and ``.png``: an architect's sketch of each storey.
+
+What is drawn (DESIGN §10), bottom to top:
+
+* rooms filled with a soft colour per type (:mod:`cga.export.palette`);
+* furniture footprints with outlines and small names (rugs dashed; detail items such
+  as door leaves are left to the door symbols);
+* walls as solid dark poured walls of their true thickness: the footprint minus the
+  rooms' free floor, with the openings cut out;
+* windows as thin double lines in their wall gap; doors as gaps with the leaf drawn
+  open and a dashed swing arc into the swing room; the front door marked outside;
+* room labels (type, area in m²) at the most open point of the room's free floor;
+* a title with the floor number, a north arrow, a 1 m / 5 m scale bar and a legend of
+  the room types on the floor.
+
+Paper frame: world ``x`` to the right, world ``z`` down the page, so north (ROS ``+y``,
+world ``−z``) is up, as in the ROS occupancy maps. One :class:`~cga.export.drawing.Drawing`
+feeds both the SVG and the PNG.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from shapely import affinity
+from shapely.geometry import MultiPolygon, Point as ShapelyPoint, Polygon
+from shapely.geometry.base import BaseGeometry
+from shapely.ops import polylabel, unary_union
+
+from cga.fsutil import atomic_write
+from cga.model import OUTSIDE, Door, FloorPlan, FurnitureItem, Room, Wall
+from cga.scene import Scene, SceneNode
+
+from .drawing import Arc, Area, Drawing, Point, Polyline, Style, Text, render_png, render_svg, text_width
+from .palette import hex_color, room_color
+
+__all__ = ["plan_drawing", "export_plans"]
+
+_TARGET_PLAN_PX = 860.0
+_MIN_PX_PER_M, _MAX_PX_PER_M = 28.0, 80.0
+_MARGIN = 48.0
+_HEADER = 64.0
+_FOOTER = 56.0
+_COLUMN_WIDTH = 200.0
+
+_INK = "#2f2b27"
+_WALL = Style(fill="#35312d")
+_FURNITURE = Style(fill="#ffffff", stroke="#6f655a", width=1.0, opacity=0.72)
+_RUG = Style(stroke="#9c9184", width=0.9, dash=(4.0, 3.0))
+_WINDOW_GAP = Style(fill="#ffffff", stroke=_INK, width=0.8)
+_GLASS = Style(stroke="#4f86b0", width=1.0)
+_LEAF = Style(stroke=_INK, width=1.8)
+_SWING = Style(stroke="#7d7369", width=0.9, dash=(3.0, 2.5))
+_ENTRANCE = Style(fill="#c0392b")
+_ENTRANCE_TEXT = "entrance"
+
+
+@dataclass(frozen=True)
+class _Paper:
+    """Maps plan ``(x, z)`` metres to paper pixels (x right, z down)."""
+
+    min_x: float
+    min_z: float
+    scale: float
+    left: float
+    top: float
+
+    def point(self, x: float, z: float) -> Point:
+        return (self.left + (x - self.min_x) * self.scale, self.top + (z - self.min_z) * self.scale)
+
+    def ring(self, coords: Sequence[Sequence[float]]) -> tuple[Point, ...]:
+        return tuple(self.point(c[0], c[1]) for c in coords)
+
+    def areas(self, geometry: BaseGeometry) -> list[tuple[tuple[Point, ...], ...]]:
+        polygons = (geometry.geoms if isinstance(geometry, MultiPolygon)
+                    else [geometry] if isinstance(geometry, Polygon) else [])
+        return [(self.ring(p.exterior.coords[:-1]),
+                 *(self.ring(h.coords[:-1]) for h in p.interiors))
+                for p in polygons if not p.is_empty]
+
+
+def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
+    """Compose the plan of one floor.
+
+    Parameters
+    ----------
+    plan:
+        The floor to draw.
+    title, subtitle:
+        Heading lines printed above the plan.
+
+    Returns
+    -------
+    Drawing
+        Page in pixels; layers ``rooms``, ``furniture``, ``walls``, ``windows``,
+        ``doors``, ``labels``, ``furniture-labels``, ``annotation``. Every room gets
+        exactly one ``room-label`` text.
+    """
+    min_x, min_z, max_x, max_z = plan.footprint.bounds
+    scale = min(_MAX_PX_PER_M, max(_MIN_PX_PER_M, _TARGET_PLAN_PX / max(
+        max_x - min_x, max_z - min_z, 1e-9)))
+    entrance = _entrance_marker(plan)
+    if entrance is not None:  # make room for the marker outside the walls
+        reach = entrance.label_extent / scale
+        label = ShapelyPoint(*entrance.label_at).buffer(reach)
+        min_x, min_z, max_x, max_z = unary_union(
+            [plan.footprint, entrance.arrow, label]).bounds
+    paper = _Paper(min_x, min_z, scale, _MARGIN, _HEADER + _MARGIN * 0.5)
+    plan_w, plan_h = (max_x - min_x) * scale, (max_z - min_z) * scale
+    column_x = _MARGIN + plan_w + _MARGIN
+    legend_rows = len(_legend_types(plan))
+    height = max(paper.top + plan_h + _FOOTER + 30, paper.top + 120 + 22 * legend_rows)
+    drawing = Drawing(width=math.ceil(column_x + _COLUMN_WIDTH), height=math.ceil(height),
+                      title=title, background="#fcfbf8")
+    _draw_rooms(drawing, paper, plan)
+    _draw_furniture(drawing, paper, plan)
+    _draw_walls(drawing, paper, plan)
+    _draw_windows(drawing, paper, plan)
+    _draw_doors(drawing, paper, plan)
+    if entrance is not None:
+        _draw_entrance(drawing, paper, entrance)
+    _draw_room_labels(drawing, paper, plan)
+    drawing.add("annotation", Text((_MARGIN, 36.0), title, 20, _INK, "start", bold=True,
+                                   css_class="title"))
+    if subtitle:
+        drawing.add("annotation", Text((_MARGIN, 58.0), subtitle, 12, "#6b645c", "start",
+                                       css_class="subtitle"))
+    _draw_north_arrow(drawing, (column_x + 22, paper.top + 24))
+    _draw_legend(drawing, plan, (column_x, paper.top + 84))
+    _draw_scale_bar(drawing, paper.scale, (_MARGIN, paper.top + plan_h + 36))
+    return drawing
+
+
+def export_plans(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
+                 name: str) -> list[Path]:
+    """Write ``<name>.floor{N}.svg`` and ``<name>.floor{N}.png`` for every floor."""
+    written = []
+    for plan in scene.floors:
+        storey = "ground floor" if plan.index == 0 else f"floor {plan.index}"
+        typed = sum(1 for r in plan.rooms if r.type)
+        subtitle = (f"{len(plan.rooms)} rooms ({typed} typed) · {plan.footprint.area:.1f} m² "
+                    f"footprint · {len(plan.doors)} doors · {len(plan.windows)} windows · "
+                    f"seed {scene.seed}")
+        drawing = plan_drawing(plan, title=f"{name} — {storey}", subtitle=subtitle)
+        stem = f"{name}.floor{plan.index}"
+        written.append(atomic_write(Path(out_dir) / f"{stem}.svg", render_svg(drawing)))
+        written.append(atomic_write(Path(out_dir) / f"{stem}.png", render_png(drawing)))
+    return written
+
+
+# -- rooms and furniture ----------------------------------------------------------------
+
+def _room_name(room: Room) -> str:
+    return room.type if room.type else f"Room {room.id}"
+
+
+def _draw_rooms(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
+    for room in plan.rooms:
+        style = Style(fill=hex_color(room_color(room.type)))
+        for rings in paper.areas(room.polygon):
+            drawing.add("rooms", Area(rings, style, css_class="room"))
+
+
+def _item_label(item: FurnitureItem) -> str:
+    """'chair1' → 'chair', 'SofaTable' → 'sofa table', 'tableBig' → 'table big'."""
+    base = re.sub(r"\d+$", "", item.name).strip() or item.model
+    return re.sub(r"(?<=[a-z])(?=[A-Z])", " ", base).replace("_", " ").lower()
+
+
+def _draw_furniture(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
+    for item in plan.furniture:
+        if item.is_detail:
+            continue
+        footprint = item.footprint()
+        ring = paper.ring(footprint.exterior.coords[:-1])
+        if item.non_collision:
+            drawing.add("furniture", Polyline(ring, _RUG, closed=True, css_class="furniture rug"))
+        else:
+            drawing.add("furniture", Area((ring,), _FURNITURE, css_class="furniture"))
+        _draw_item_name(drawing, paper, item, footprint)
+
+
+def _draw_item_name(drawing: Drawing, paper: _Paper, item: FurnitureItem,
+                    footprint: Polygon) -> None:
+    label = _item_label(item)
+    min_x, min_z, max_x, max_z = footprint.bounds
+    across, along = (max_x - min_x) * paper.scale - 4, (max_z - min_z) * paper.scale - 4
+    size = 8.5
+    for candidate in (8.5, 7.5, 6.5):
+        size = candidate
+        if text_width(label, size) <= max(across, along):
+            break
+    vertical = text_width(label, size) > across and along > across
+    cx, cy = paper.point(*footprint.centroid.coords[0])
+    if vertical:
+        position, angle = (cx + size * 0.35, cy), 90
+    else:
+        position, angle = (cx, cy + size * 0.35), 0
+    drawing.add("furniture-labels", Text(position, label, size, "#5d544a", angle=angle,
+                                         css_class="furniture-label"))
+
+
+def _erode(region: BaseGeometry, half_w: float, half_h: float) -> BaseGeometry:
+    """Where the centre of a ``2·half_w`` × ``2·half_h`` axis-aligned box can go so that
+    the box stays inside ``region`` (erosion by a rectangle: squash x until the box is
+    a square, erode with a mitred buffer, stretch back)."""
+    k = half_h / half_w
+    squashed = affinity.scale(region, xfact=k, yfact=1.0, origin=(0, 0))
+    eroded = squashed.buffer(-half_h, join_style="mitre")
+    return affinity.scale(eroded, xfact=1 / k, yfact=1.0, origin=(0, 0))
+
+
+def _open_point(region: BaseGeometry) -> tuple[float, float]:
+    """The most open point of ``region`` (pole of inaccessibility of its roomiest
+    piece), moved to the middle of the ridge of nearly as open points so labels in
+    rectangular rooms sit centred."""
+    pieces = region.geoms if isinstance(region, MultiPolygon) else [region]
+    best: tuple[float, ShapelyPoint, Polygon] | None = None
+    for piece in pieces:
+        if piece.is_empty or piece.area <= 0:
+            continue
+        centre = polylabel(piece, tolerance=0.01)
+        clearance = piece.boundary.distance(centre)
+        if best is None or clearance > best[0]:
+            best = (clearance, centre, piece)
+    if best is None:
+        point = region.representative_point() if not region.is_empty else ShapelyPoint(0, 0)
+        return (point.x, point.y)
+    clearance, centre, piece = best
+    ridge = piece.buffer(-0.8 * clearance)
+    if not ridge.is_empty and ridge.contains(ridge.centroid):
+        centre = ridge.centroid
+    return (centre.x, centre.y)
+
+
+def _draw_room_labels(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
+    """Type and area of every room, placed where the label box fits on free floor
+    (clear of furniture and door swings if possible), shrinking the font if needed."""
+    swings = [ShapelyPoint(*door.position).buffer(door.width + 0.05) for door in plan.doors]
+    obstacles = unary_union([f.footprint().buffer(0.05) for f in plan.furniture
+                             if not f.is_detail] + swings)
+    for room in plan.rooms:
+        interior = room.interior if not room.interior.is_empty else room.polygon
+        name, area = _room_name(room), f"{room.area:.1f} m²"
+        regions = (interior.difference(obstacles), interior)
+        size, point = 13.0, None
+        for region, size in ((r, s) for r in regions for s in (13.0, 11.5, 10.0, 9.0)):
+            half_w = (max(text_width(name, size, bold=True),
+                          text_width(area, size * 0.82)) / 2 + 3) / paper.scale
+            half_h = (1.1 * size + 2) / paper.scale
+            fit = _erode(region, half_w, half_h)
+            if not fit.is_empty:
+                point = _open_point(fit)
+                break
+        if point is None:
+            point = _open_point(interior)
+        cx, cy = paper.point(*point)
+        drawing.add("labels", Text((cx, cy - 0.05 * size), name, size, "#2b2823", bold=True,
+                                   css_class="room-label"))
+        drawing.add("labels", Text((cx, cy + 0.95 * size), area, size * 0.82, "#5b554d",
+                                   css_class="room-area"))
+
+
+# -- walls and openings -----------------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Band:
+    """A wall's solid across its line: offsets ``lo`` < ``hi`` along ``normal``."""
+
+    normal: np.ndarray
+    lo: float
+    hi: float
+
+
+def _band(plan: FloorPlan, wall: Wall) -> _Band:
+    u = wall.direction
+    normal = np.array([-u[1], u[0]])
+    t = wall.thickness
+    if not wall.outer:
+        return _Band(normal, -t / 2, t / 2)
+    middle = (np.asarray(wall.start) + np.asarray(wall.end)) / 2
+    inside = plan.footprint.contains(ShapelyPoint(*(middle + normal * t / 2)))
+    return _Band(normal, 0.0, t) if inside else _Band(normal, -t, 0.0)
+
+
+def _along(wall: Wall, point: Sequence[float]) -> float:
+    return float(np.dot(np.subtract(point, wall.start), wall.direction))
+
+
+def _rect(wall: Wall, band: _Band, s0: float, s1: float, lo: float, hi: float) -> Polygon:
+    start, u = np.asarray(wall.start), wall.direction
+    corners = [start + u * s + band.normal * o for s, o in ((s0, lo), (s1, lo), (s1, hi), (s0, hi))]
+    return Polygon(corners)
+
+
+def _draw_walls(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
+    interiors = unary_union([r.interior for r in plan.rooms])
+    solid = plan.footprint.difference(interiors)
+    cuts = []
+    for wall in plan.walls:
+        band = _band(plan, wall)
+        for opening in wall.openings:
+            half = opening.width / 2
+            cuts.append(_rect(wall, band, opening.center - half, opening.center + half,
+                              band.lo - 0.02, band.hi + 0.02))
+    solid = solid.difference(unary_union(cuts)) if cuts else solid
+    for rings in paper.areas(solid):
+        drawing.add("walls", Area(rings, _WALL, css_class="wall"))
+
+
+def _draw_windows(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
+    for window in plan.windows:
+        wall = plan.wall(window.wall)
+        band = _band(plan, wall)
+        s = _along(wall, window.position)
+        s0, s1 = s - window.width / 2, s + window.width / 2
+        gap = _rect(wall, band, s0, s1, band.lo, band.hi)
+        drawing.add("windows", Area((paper.ring(gap.exterior.coords[:-1]),), _WINDOW_GAP,
+                                    css_class="window"))
+        for fraction in (0.38, 0.62):
+            o = band.lo + (band.hi - band.lo) * fraction
+            line = _rect(wall, band, s0, s1, o, o).exterior.coords[:2]
+            drawing.add("windows", Polyline(paper.ring(line), _GLASS, css_class="window-glass"))
+
+
+def _swing_side(plan: FloorPlan, wall: Wall, band: _Band, door: Door) -> int:
+    """+1 if the leaf swings to the ``band.normal`` side of the wall, else −1."""
+    probe = np.asarray(door.position) + band.normal * (band.hi + 0.3)
+    if door.swing_room == OUTSIDE:
+        on_plus = not plan.footprint.contains(ShapelyPoint(*probe))
+    else:
+        on_plus = plan.room(door.swing_room).polygon.contains(ShapelyPoint(*probe))
+    return 1 if on_plus else -1
+
+
+def _draw_doors(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
+    for door in plan.doors:
+        wall = plan.wall(door.wall)
+        band = _band(plan, wall)
+        side = _swing_side(plan, wall, band, door)
+        face = band.hi if side > 0 else band.lo
+        s = _along(wall, door.position)
+        hinge_s, free_s = ((s - door.width / 2, s + door.width / 2) if door.hinge == "start"
+                           else (s + door.width / 2, s - door.width / 2))
+        start, u, n = np.asarray(wall.start), wall.direction, band.normal * side
+        hinge = start + u * hinge_s + band.normal * face
+        closed = start + u * free_s + band.normal * face
+        tip = hinge + n * door.width
+        h, t, c = paper.point(*hinge), paper.point(*tip), paper.point(*closed)
+        drawing.add("doors", Polyline((h, t), _LEAF, css_class="door-leaf"))
+        a0 = math.atan2(t[1] - h[1], t[0] - h[0])
+        a1 = math.atan2(c[1] - h[1], c[0] - h[0])
+        a1 = a0 + (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
+        drawing.add("doors", Arc(h, door.width * paper.scale, a0, a1, _SWING,
+                                 css_class="door-swing"))
+
+
+@dataclass(frozen=True)
+class _Entrance:
+    """The front-door marker in plan metres: an arrowhead outside the door pointing in,
+    and where its label goes (``label_extent``: half the label's width in pixels)."""
+
+    arrow: Polygon
+    label_at: tuple[float, float]
+    label_extent: float
+
+
+def _entrance_marker(plan: FloorPlan) -> _Entrance | None:
+    door = plan.front_door()
+    if door is None:
+        return None
+    wall = plan.wall(door.wall)
+    u = wall.direction
+    position = np.asarray(door.position)
+    outward = np.array([-u[1], u[0]])
+    if plan.footprint.contains(ShapelyPoint(*(position + outward * 0.3))):
+        outward = -outward
+    apex, base = position + outward * 0.25, position + outward * 0.75
+    arrow = Polygon([apex, base + u * 0.3, base - u * 0.3])
+    label_at = position + outward * (1.1 if abs(outward[1]) > 0.5 else 1.0)
+    return _Entrance(arrow, (float(label_at[0]), float(label_at[1])),
+                     text_width(_ENTRANCE_TEXT, 10, bold=True) / 2 + 4)
+
+
+def _draw_entrance(drawing: Drawing, paper: _Paper, entrance: _Entrance) -> None:
+    drawing.add("doors", Area((paper.ring(entrance.arrow.exterior.coords[:-1]),), _ENTRANCE,
+                              css_class="front-door"))
+    x, y = paper.point(*entrance.label_at)
+    drawing.add("doors", Text((x, y + 4), _ENTRANCE_TEXT, 10, "#c0392b", bold=True,
+                              css_class="front-door-label"))
+
+
+# -- annotation -------------------------------------------------------------------------
+
+def _draw_scale_bar(drawing: Drawing, scale: float, origin: Point) -> None:
+    """A 5 m bar in alternating 1 m blocks, labelled at 0 and 5 m (``scale`` px per m)."""
+    metres = 5
+    x0, y0 = origin
+    height = 6.0
+    for k in range(metres):
+        left = x0 + k * scale
+        block = ((left, y0), (left + scale, y0), (left + scale, y0 + height),
+                 (left, y0 + height))
+        style = Style(fill=_INK if k % 2 == 0 else "#ffffff", stroke=_INK, width=0.8)
+        drawing.add("annotation", Area((block,), style, css_class="scale-bar"))
+    for k in range(0, metres + 1, 5):
+        drawing.add("annotation", Text((x0 + k * scale, y0 + height + 13), str(k), 10,
+                                       _INK, css_class="scale-label"))
+    drawing.add("annotation", Text((x0 + metres * scale + 8, y0 + height), "m", 10,
+                                   _INK, "start", css_class="scale-label"))
+    drawing.add("annotation", Text((x0, y0 - 6), "1 m blocks", 9, "#6b645c", "start",
+                                   css_class="scale-label"))
+
+
+def _draw_north_arrow(drawing: Drawing, centre: Point) -> None:
+    """An arrow pointing up the page (north = world −z = ROS +y)."""
+    x, y = centre
+    r = 17.0
+    drawing.add("annotation", Arc((x, y), r, 0.0, math.pi * 0.999, Style(stroke=_INK, width=1.0)))
+    drawing.add("annotation", Arc((x, y), r, math.pi, math.pi * 1.999, Style(stroke=_INK, width=1.0)))
+    drawing.add("annotation", Area((((x, y - r + 2), (x + 7, y + r - 6), (x, y + r - 11),
+                                     (x - 7, y + r - 6)),), Style(fill=_INK), css_class="north"))
+    drawing.add("annotation", Text((x, y - r - 5), "N", 12, _INK, bold=True, css_class="north"))
+
+
+def _legend_types(plan: FloorPlan) -> list[str | None]:
+    seen: dict[str | None, None] = {}
+    for room in sorted(plan.rooms, key=lambda r: ((r.type or "~").lower(), r.id)):
+        seen.setdefault(room.type, None)
+    return list(seen)
+
+
+def _draw_legend(drawing: Drawing, plan: FloorPlan, origin: Point) -> None:
+    x, y = origin
+    drawing.add("annotation", Text((x, y), "Rooms", 12, _INK, "start", bold=True,
+                                   css_class="legend"))
+    for row, room_type in enumerate(_legend_types(plan)):
+        top = y + 12 + row * 22
+        swatch = ((x, top), (x + 16, top), (x + 16, top + 14), (x, top + 14))
+        drawing.add("annotation", Area((swatch,), Style(fill=hex_color(room_color(room_type)),
+                                                        stroke="#8a8278", width=0.7),
+                                       css_class="legend"))
+        count = sum(1 for r in plan.rooms if r.type == room_type)
+        text = (room_type or "untyped") + (f" ×{count}" if count > 1 else "")
+        drawing.add("annotation", Text((x + 24, top + 11), text, 11, _INK, "start",
+                                       css_class="legend"))

@@ -1,0 +1,293 @@
+"""``<name>.scene.json``: everything a build decided, as plain data with a schema.
+
+The document lists floors, rooms, walls (with openings), doors, windows, furniture
+poses, room-graph edges, diagnostics, checks, the seed and the tool version, in the
+world frame of DESIGN §3 (metres, y up, plan coordinates ``(x, z)``). Its JSON Schema
+(draft 2020-12) ships as package data, ``cga/schema/scene.schema.json``.
+
+The text is deterministic: keys sorted, floats rounded to 1e-6, lists in model order
+(ids ascending). The one exception is ``timings`` (wall-clock seconds per stage), kept
+in its own top-level key so a comparison can drop it.
+
+:func:`scene_as_dict` builds the document (a pure function); :func:`export_scene_json`
+writes it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from functools import cache
+from importlib.resources import files
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from shapely.geometry import MultiPolygon, Polygon
+from shapely.geometry.polygon import orient
+
+import cga
+from cga.errors import ExportError
+from cga.fsutil import atomic_write
+from cga.model import OUTSIDE, Door, FloorPlan, FurnitureItem, Room, Wall, Window
+from cga.scene import Scene, SceneNode
+
+__all__ = [
+    "FORMAT",
+    "FORMAT_VERSION",
+    "load_schema",
+    "scene_as_dict",
+    "scene_json_text",
+    "export_scene_json",
+]
+
+FORMAT = "cga.scene"
+"""Value of the document's ``format`` key."""
+
+FORMAT_VERSION = 1
+"""Incremented when a key changes meaning or disappears (additions keep the version)."""
+
+_DIGITS = 6
+
+# An indented JSON list holding only numbers. JSON strings never contain a raw newline,
+# so the pattern only meets structural whitespace.
+_NUMBER_LIST = re.compile(r"\[\n\s*((?:-?[0-9][0-9.eE+-]*,?\s*)+?)\n\s*\]")
+
+
+@cache
+def load_schema() -> dict[str, Any]:
+    """The scene document's JSON Schema (draft 2020-12), from the package data."""
+    text = (files("cga") / "schema" / "scene.schema.json").read_text(encoding="utf-8")
+    return json.loads(text)
+
+
+def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
+    """Build the scene document.
+
+    Parameters
+    ----------
+    scene:
+        The build result.
+    nodes:
+        Its scene nodes; they give the ``nodes`` index (path, kind, bounds) and link
+        rooms and furniture to the glTF node of the same name.
+
+    Returns
+    -------
+    dict
+        JSON-ready data (only dicts, lists, strings, finite rounded floats, ints, bools
+        and None) matching ``scene.schema.json``.
+
+    Raises
+    ------
+    ExportError
+        A value cannot be represented in JSON (e.g. a NaN in the checks).
+    """
+    node_paths = {node.path for node in nodes}
+    floors = scene.floors
+    document = {
+        "format": FORMAT,
+        "format_version": FORMAT_VERSION,
+        "generator": {"name": "cga", "version": cga.__version__},
+        "name": scene.name,
+        "seed": int(scene.seed),
+        "units": float(scene.units),
+        "frame": {
+            "length_unit": "m",
+            "up": "+y",
+            "plan_axes": ["x", "z"],
+            "furniture_front_at_rotation_0": "-z",
+        },
+        "floors": [_floor(p) for p in floors],
+        "rooms": [_room(p, r, node_paths) for p in floors for r in p.rooms],
+        "walls": [_wall(p, w) for p in floors for w in p.walls],
+        "doors": [_door(p, d) for p in floors for d in p.doors],
+        "windows": [_window(p, w) for p in floors for w in p.windows],
+        "furniture": [_furniture(p, f, node_paths) for p in floors for f in p.furniture],
+        "room_graph": [e for p in floors for e in _graph_edges(p)],
+        "nodes": [_node(n) for n in nodes],
+        "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
+                        for d in scene.all_diagnostics()],
+        "checks": _clean(scene.checks, "checks"),
+        "timings": _clean(dict(scene.timings), "timings"),
+    }
+    return _clean(document, "")
+
+
+def scene_json_text(scene: Scene, nodes: Sequence[SceneNode]) -> str:
+    """The document as text: sorted keys, two-space indent, lists of numbers (points)
+    on one line, trailing newline."""
+    text = json.dumps(scene_as_dict(scene, nodes), sort_keys=True, indent=2,
+                      ensure_ascii=False, allow_nan=False)
+    return _NUMBER_LIST.sub(lambda m: "[" + " ".join(m.group(1).split()) + "]", text) + "\n"
+
+
+def export_scene_json(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
+                      name: str) -> list[Path]:
+    """Write ``<out_dir>/<name>.scene.json`` atomically and return its path."""
+    return [atomic_write(Path(out_dir) / f"{name}.scene.json", scene_json_text(scene, nodes))]
+
+
+# -- pieces -----------------------------------------------------------------------------
+
+def _floor(plan: FloorPlan) -> dict[str, Any]:
+    return {
+        "index": plan.index,
+        "elevation": plan.elevation,
+        "floor_y": plan.floor_y,
+        "height": plan.height,
+        "is_top": plan.is_top,
+        "footprint": _polygon(plan.footprint),
+        "area": float(plan.footprint.area),
+        "settings": dataclasses.asdict(plan.settings),
+    }
+
+
+def _room(plan: FloorPlan, room: Room, node_paths: set[str]) -> dict[str, Any]:
+    path = f"floor{plan.index}/{room.label}"
+    return {
+        "floor": plan.index,
+        "id": room.id,
+        "type": room.type,
+        "polygon": _polygon(room.polygon),
+        "interior": _polygon(room.interior),
+        "area": room.area,
+        "floor_area": float(room.interior.area),
+        "node": path if path in node_paths else None,
+    }
+
+
+def _wall(plan: FloorPlan, wall: Wall) -> dict[str, Any]:
+    return {
+        "floor": plan.index,
+        "id": wall.id,
+        "start": list(wall.start),
+        "end": list(wall.end),
+        "length": wall.length,
+        "outer": wall.outer,
+        "rooms": list(wall.rooms),
+        "thickness": wall.thickness,
+        "openings": [
+            {**dataclasses.asdict(o), "position": list(wall.point_at(o.center))}
+            for o in sorted(wall.openings, key=lambda o: (o.center, o.kind))
+        ],
+    }
+
+
+def _door(plan: FloorPlan, door: Door) -> dict[str, Any]:
+    return {
+        "floor": plan.index,
+        "id": door.id,
+        "wall": door.wall,
+        "rooms": list(door.rooms),
+        "position": list(door.position),
+        "width": door.width,
+        "height": door.height,
+        "swing_room": door.swing_room,
+        "hinge": door.hinge,
+        "front": door.is_front,
+        "reason": door.reason,
+    }
+
+
+def _window(plan: FloorPlan, window: Window) -> dict[str, Any]:
+    return {
+        "floor": plan.index,
+        "id": window.id,
+        "wall": window.wall,
+        "room": window.room,
+        "position": list(window.position),
+        "width": window.width,
+        "height": window.height,
+        "sill": window.sill,
+    }
+
+
+def _furniture(plan: FloorPlan, item: FurnitureItem, node_paths: set[str]) -> dict[str, Any]:
+    turns = item.rotation % 4
+    x, z = item.position
+    y = plan.floor_y + item.elevation
+    min_x, min_z, max_x, max_z = item.footprint().bounds
+    path = f"floor{plan.index}/{plan.room(item.room).label}/furniture/{item.name}"
+    return {
+        "floor": plan.index,
+        "room": item.room,
+        "name": item.name,
+        "model": item.model,
+        "parent": item.parent,
+        "pose": {"position": [x, y, z], "yaw_degrees": 90.0 * turns, "quarter_turns": turns},
+        "size": list(item.size),
+        "front": list(item.front),
+        "bbox": {"min": [min_x, y, min_z], "max": [max_x, y + item.size[1], max_z]},
+        "is_detail": item.is_detail,
+        "non_collision": item.non_collision,
+        "node": path if path in node_paths else None,
+    }
+
+
+def _graph_edges(plan: FloorPlan) -> Iterable[dict[str, Any]]:
+    if plan.room_graph is None:
+        return []
+    doors_by_pair: dict[frozenset[int], list[int]] = {}
+    for door in plan.doors:
+        doors_by_pair.setdefault(frozenset(door.rooms), []).append(door.id)
+    edges = sorted(tuple(sorted((int(a), int(b)))) for a, b in plan.room_graph.edges)
+    return [
+        {"floor": plan.index, "rooms": [a, b], "outside": a == OUTSIDE or b == OUTSIDE,
+         "doors": sorted(doors_by_pair.get(frozenset((a, b)), []))}
+        for a, b in edges
+    ]
+
+
+def _node(node: SceneNode) -> dict[str, Any]:
+    bounds = np.asarray(node.mesh.bounds, dtype=float)
+    return {
+        "path": node.path,
+        "kind": node.kind,
+        "static": node.static,
+        "bbox": {"min": bounds[0].tolist(), "max": bounds[1].tolist()},
+        "convex_parts": len(node.parts),
+    }
+
+
+def _polygon(geometry: Polygon | MultiPolygon) -> dict[str, Any]:
+    """A polygon as counter-clockwise (in x–z) exterior and clockwise hole rings."""
+    if isinstance(geometry, MultiPolygon):
+        # a room's interior can fall apart where a wall pinches it; keep the largest piece
+        geometry = max(geometry.geoms, key=lambda g: g.area)
+    if geometry.is_empty:
+        return {"exterior": [], "holes": []}
+    shaped = orient(geometry, sign=1.0)
+    return {
+        "exterior": [list(c) for c in shaped.exterior.coords[:-1]],
+        "holes": [[list(c) for c in ring.coords[:-1]] for ring in shaped.interiors],
+    }
+
+
+def _clean(value: Any, where: str) -> Any:
+    """Convert to JSON-ready types, rounding floats to 1e-6 (``-0.0`` → ``0.0``)."""
+    if isinstance(value, bool) or value is None or isinstance(value, str):
+        return value
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        number = float(value)
+        if not math.isfinite(number):
+            raise ExportError(f"scene JSON: {where or 'value'} is {number}, which JSON cannot "
+                              f"hold; the stage that produced it must report a finite number")
+        return round(number, _DIGITS) + 0.0
+    if isinstance(value, np.ndarray):
+        return _clean(value.tolist(), where)
+    if isinstance(value, Path):
+        return value.as_posix()
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return _clean(dataclasses.asdict(value), where)
+    if isinstance(value, Mapping):
+        return {str(k): _clean(v, f"{where}.{k}" if where else str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v, f"{where}[{i}]") for i, v in enumerate(value)]
+    raise ExportError(f"scene JSON: {where or 'value'} has type {type(value).__name__}, "
+                      f"which has no JSON form")
