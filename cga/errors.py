@@ -75,10 +75,12 @@ class SourceError(CGAError):
     def _excerpt(self) -> str:
         if self.source is None or self.span is None:
             return ""
-        lines = self.source.splitlines()
+        # Lines are counted at "\n" only, as the parser counts them (str.splitlines
+        # would also split at form feeds and other separators and shift the excerpt).
+        lines = self.source.split("\n")
         if not 1 <= self.span.line <= len(lines):
             return ""
-        line = lines[self.span.line - 1].replace("\t", " ")
+        line = lines[self.span.line - 1].rstrip("\r").replace("\t", " ")
         caret_col = max(self.span.column, 1)
         underline = "^" + "~" * max(0, min(self.span.length, len(line) - caret_col + 1) - 1)
         gutter = f"{self.span.line:>4} | "
