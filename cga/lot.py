@@ -1,0 +1,217 @@
+"""The lot: the footprint polygon a derivation starts from.
+
+A lot comes from the command line (``--lot``), from the grammar's ``Lot:`` line, or is
+the default rectangle. Every form ends as a valid shapely :class:`~shapely.geometry.Polygon`
+in plan coordinates ``(x, z)``, metres, exterior counter-clockwise in those coordinates
+(shapely's ``orient(sign=1)``), not self-intersecting, with positive area.
+
+Accepted ``--lot`` forms (metres)::
+
+    14x10                                   a 14 m × 10 m rectangle at the origin
+    rectangle(14, 10)                       the same
+    "polygon((0,0),(14,0),(14,6),(8,6),(8,10),(0,10))"
+    footprint.geojson                       a GeoJSON Polygon, a Feature with one, or a
+                                            FeatureCollection holding exactly one polygon
+                                            (coordinates in metres, x east → plan x,
+                                            y north → plan z)
+
+The grammar's ``Lot: rectangle(w, d)`` / ``Lot: polygon(...)`` uses the same shapes in
+grammar units; :func:`lot_from_call` scales them by ``units``.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from shapely.geometry import MultiPolygon, Polygon, shape as geojson_shape
+from shapely.geometry.polygon import orient
+from shapely.validation import explain_validity
+
+from .errors import DerivationError, ResourceNotFoundError, Span, UsageError
+
+__all__ = ["DEFAULT_LOT", "LOT_FORMATS", "rectangle", "polygon_lot", "parse_lot",
+           "load_geojson", "lot_from_call"]
+
+DEFAULT_LOT = (14.0, 10.0)
+"""Width (x) and depth (z) in metres of the lot used when neither CLI nor grammar gives one."""
+
+LOT_FORMATS = ('14x10 (width x depth in metres)', '"rectangle(14, 10)"',
+               '"polygon((0,0),(14,0),(14,10),(0,10))"', "a .geojson file with one polygon")
+"""The ``--lot`` forms, as listed in error messages."""
+
+_NUMBER = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"
+_SIZE = re.compile(rf"^\s*({_NUMBER})\s*[xX×*]\s*({_NUMBER})\s*$")
+_CALL = re.compile(r"^\s*(rectangle|polygon)\s*\((.*)\)\s*$", re.IGNORECASE | re.DOTALL)
+_POINT = re.compile(rf"\(\s*({_NUMBER})\s*,\s*({_NUMBER})\s*\)")
+_RECT_ARGS = re.compile(rf"^\s*({_NUMBER})\s*,\s*({_NUMBER})\s*$")
+
+
+def _expected() -> str:
+    return "expected one of: " + "; ".join(LOT_FORMATS)
+
+
+def _validated(polygon: Polygon, what: str) -> Polygon:
+    """``polygon`` oriented counter-clockwise, or UsageError saying what is wrong."""
+    if polygon.is_empty or len(polygon.exterior.coords) < 4:
+        raise UsageError(f"{what}: a lot needs at least 3 distinct corners")
+    if not polygon.is_valid:
+        raise UsageError(f"{what}: the polygon is not simple ({explain_validity(polygon)}); "
+                         f"list the corners in order around the boundary without crossings")
+    if polygon.area <= 0:
+        raise UsageError(f"{what}: the polygon has zero area")
+    return orient(polygon, sign=1.0)
+
+
+def rectangle(width: float, depth: float) -> Polygon:
+    """A ``width`` × ``depth`` rectangle with a corner at the origin (metres).
+
+    Raises
+    ------
+    UsageError
+        A side is not positive.
+    """
+    if not (width > 0 and depth > 0):
+        raise UsageError(f"a rectangular lot needs positive width and depth, got "
+                         f"{width:g} x {depth:g}")
+    return _validated(Polygon([(0, 0), (width, 0), (width, depth), (0, depth)]),
+                      f"rectangle {width:g} x {depth:g}")
+
+
+def polygon_lot(points: Sequence[Sequence[float]], what: str = "polygon") -> Polygon:
+    """A lot from corner points ``(x, z)`` in order (metres), validated and oriented.
+
+    Raises
+    ------
+    UsageError
+        Fewer than 3 corners, self-intersecting, or zero area.
+    """
+    coords = [(float(p[0]), float(p[1])) for p in points]
+    if len(coords) < 3:
+        raise UsageError(f"{what}: a lot needs at least 3 corners, got {len(coords)}")
+    return _validated(Polygon(coords), what)
+
+
+def load_geojson(path: str | Path) -> Polygon:
+    """The single polygon of a GeoJSON file (Polygon, Feature or FeatureCollection).
+
+    Raises
+    ------
+    ResourceNotFoundError
+        The file does not exist.
+    UsageError
+        Not JSON, not GeoJSON, no polygon or more than one, or an invalid polygon.
+    """
+    file = Path(path)
+    if not file.is_file():
+        raise ResourceNotFoundError("lot file", str(path), [str(file.resolve())])
+    try:
+        document = json.loads(file.read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise UsageError(f"{file}: not a JSON file ({error})") from None
+    polygons = _geojson_polygons(document, str(file))
+    if len(polygons) != 1:
+        raise UsageError(f"{file}: expected exactly one polygon, found {len(polygons)}")
+    return _validated(polygons[0], str(file))
+
+
+def _geojson_polygons(document: Any, where: str) -> list[Polygon]:
+    if not isinstance(document, dict) or "type" not in document:
+        raise UsageError(f"{where}: not GeoJSON (no 'type'); expected a Polygon, a Feature "
+                         f"or a FeatureCollection")
+    kind = document["type"]
+    if kind == "FeatureCollection":
+        return [p for feature in document.get("features", [])
+                for p in _geojson_polygons(feature, where)]
+    if kind == "Feature":
+        geometry = document.get("geometry")
+        return [] if geometry is None else _geojson_polygons(geometry, where)
+    if kind in ("Polygon", "MultiPolygon"):
+        try:
+            geometry = geojson_shape(document)
+        except (ValueError, TypeError, IndexError, AttributeError) as error:
+            raise UsageError(f"{where}: malformed {kind} coordinates ({error})") from None
+        return list(geometry.geoms) if isinstance(geometry, MultiPolygon) else [geometry]
+    return []
+
+
+def _parse_call(name: str, inner: str, text: str) -> Polygon:
+    if name.lower() == "rectangle":
+        match = _RECT_ARGS.match(inner)
+        if not match:
+            raise UsageError(f"--lot {text!r}: rectangle takes two numbers, e.g. "
+                             f"rectangle(14, 10)")
+        return rectangle(float(match.group(1)), float(match.group(2)))
+    points = _POINT.findall(inner)
+    leftover = _POINT.sub("", inner).replace(",", "").strip()
+    if not points or leftover:
+        raise UsageError(f"--lot {text!r}: polygon takes corner points, e.g. "
+                         f"polygon((0,0),(14,0),(14,10),(0,10))")
+    return polygon_lot([(float(x), float(z)) for x, z in points], f"--lot {text!r}")
+
+
+def parse_lot(text: str, *, base_dir: str | Path | None = None) -> Polygon:
+    """Parse a ``--lot`` value (see the module docstring for the forms).
+
+    Parameters
+    ----------
+    text:
+        The option's value.
+    base_dir:
+        Folder a relative GeoJSON path is taken from (default: the working directory).
+
+    Raises
+    ------
+    UsageError
+        The text is none of the accepted forms, or the polygon is invalid.
+    ResourceNotFoundError
+        A ``.geojson``/``.json`` file that does not exist.
+    """
+    match = _SIZE.match(text)
+    if match:
+        return rectangle(float(match.group(1)), float(match.group(2)))
+    match = _CALL.match(text)
+    if match:
+        return _parse_call(match.group(1), match.group(2), text)
+    if text.lower().endswith((".geojson", ".json")):
+        path = Path(text)
+        if not path.is_absolute() and base_dir is not None:
+            path = Path(base_dir) / path
+        return load_geojson(path)
+    raise UsageError(f"--lot {text!r}: {_expected()}")
+
+
+def lot_from_call(name: str, args: Sequence[Any], span: Span, units: float) -> Polygon:
+    """The lot of a grammar's ``Lot:`` line from its evaluated arguments.
+
+    ``rectangle(w, d)`` takes two numbers, ``polygon(p1, p2, ...)`` takes ``(x, z)``
+    pairs; both in grammar units, scaled by ``units`` to metres.
+
+    Raises
+    ------
+    DerivationError
+        Unknown shape, wrong arguments or an invalid polygon, at ``span``.
+    """
+    def number(value: Any) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise DerivationError(f"Lot: {name}() takes numbers, got {value!r}", span)
+        return float(value) * units
+
+    try:
+        if name == "rectangle":
+            if len(args) != 2:
+                raise DerivationError(f"Lot: rectangle takes 2 numbers (width, depth), got "
+                                      f"{len(args)}", span)
+            return rectangle(number(args[0]), number(args[1]))
+        if name == "polygon":
+            if not all(isinstance(a, tuple) and len(a) == 2 for a in args):
+                raise DerivationError("Lot: polygon takes (x, z) corner pairs, e.g. "
+                                      "polygon((0,0),(14,0),(14,10),(0,10))", span)
+            return polygon_lot([(number(x), number(z)) for x, z in args], "Lot: polygon")
+    except UsageError as error:
+        raise DerivationError(str(error), span) from None
+    raise DerivationError(f"Lot: unknown shape '{name}'", span,
+                          hint="use rectangle(width, depth) or polygon((x,z), ...)")
