@@ -1,0 +1,56 @@
+"""``extrude(height)``: give a footprint height (DESIGN §5).
+
+A mass's footprint is extruded from the mass's base to ``height`` (an existing height is
+replaced, so ``extrude`` on the lot makes the building's body). A horizontal face (the
+``top`` or ``bottom`` of a mass) is extruded along its outward normal into a new mass:
+up from a roof, down from a floor. Side faces would need prisms that are not vertical;
+they are refused with a message rather than approximated.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from shapely.geometry import Polygon
+from shapely.geometry.polygon import orient
+
+from cga.errors import DerivationError
+from cga.shape import Face, Mass, Shape
+
+from .base import Child, Operation, OperationContext, Param
+
+__all__ = ["Extrude"]
+
+_HORIZONTAL = 1e-9
+
+
+class Extrude(Operation):
+    """Footprint → prism of the given height."""
+
+    name = "extrude"
+    params = (Param("height", "length", doc="height of the prism"),)
+    doc = "extrude(height): footprint polygon → prism of height `height`"
+
+    def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        height = args["height"]
+        if not height > 0:
+            raise DerivationError(f"extrude height must be positive, got {height / ctx.units:g}")
+        geometry = shape.geometry
+        if isinstance(geometry, Mass):
+            mass = Mass(footprint=geometry.footprint, base=geometry.base, height=height)
+        else:
+            mass = _extrude_face(geometry, height)
+        return [Child(successor=0, geometry=mass, scope=mass.scope())]
+
+
+def _extrude_face(face: Face, height: float) -> Mass:
+    normal = face.normal()
+    if abs(abs(normal[1]) - 1.0) > _HORIZONTAL:
+        raise DerivationError(
+            f"extrude works on masses and horizontal faces; this {face.kind} face is not "
+            f"horizontal", hint="extrude the footprint before component_split, or use the "
+                                "'top'/'bottom' faces")
+    footprint = orient(Polygon([(x, z) for x, _, z in face.vertices]), sign=1.0)
+    level = face.vertices[0][1]
+    base = level if normal[1] > 0 else level - height
+    return Mass(footprint=footprint, base=base, height=height)
