@@ -100,7 +100,7 @@ def turned_box(size: Vec3, center: Vec3, angle: float, color: Color) -> Part:
 
 def frustum(x: float, z: float, y0: float, y1: float, r0: float, r1: float, color: Color,
             sections: int = 8) -> Part:
-    """A vertical prism (``r0 == r1``) or frustum from radius ``r0`` at ``y0`` to ``r1`` at ``y1``."""
+    """A vertical frustum, radius ``r0`` at ``y0`` to ``r1`` at ``y1`` (a prism if equal)."""
     mesh = trimesh.creation.cylinder(radius=r0, sections=sections,
                                      segment=[(x, y0, z), (x, y1, z)])
     top = np.isclose(mesh.vertices[:, 1], y1)
@@ -310,11 +310,11 @@ def make_desk() -> Model:
 
 def make_officechair() -> Model:
     parts = []
-    for i in range(5):
+    for i in range(5):  # five-star base: an arm toward each caster
         angle = math.pi / 2 + 2 * math.pi * i / 5
         ux, uz = math.cos(angle), math.sin(angle)
-        parts.append(turned_box((0.05, 0.04, 0.28), (0.14 * ux, 0.08, 0.14 * uz), -angle + math.pi / 2,
-                                CHARCOAL))
+        parts.append(turned_box((0.05, 0.04, 0.28), (0.14 * ux, 0.08, 0.14 * uz),
+                                math.pi / 2 - angle, CHARCOAL))
         parts.append(prism(0.28 * ux, 0.28 * uz, 0.0, 0.06, 0.03, BLACK))
     parts += [
         prism(0.0, 0.0, 0.06, 0.12, 0.05, CHARCOAL),

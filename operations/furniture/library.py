@@ -153,6 +153,7 @@ class ModelLibrary:
     Names match case-insensitively ignoring spaces, ``_`` and ``-``; a trailing number is
     dropped when the full name is not found in any folder (:func:`name_candidates`), so
     ``Bookshelf2`` finds ``bookshelf.obj`` unless some folder has ``bookshelf2.obj``.
+    Each folder is listed once, on its first lookup; a library is meant for one build.
     """
 
     def __init__(self, search_dirs: Sequence[Path]):

@@ -145,7 +145,8 @@ def test_user_obj_without_groups_is_one_part_and_flagged_when_concave(tmp_path):
 
 
 def test_user_obj_with_convex_groups_is_usable_directly(tmp_path):
-    write_obj(tmp_path / "stool.obj", [cube((0, 0, 0), (1, 0.5, 1)), cube((0, 0.5, 0), (1, 0.6, 1))],
+    write_obj(tmp_path / "stool.obj",
+              [cube((0, 0, 0), (1, 0.5, 1)), cube((0, 0.5, 0), (1, 0.6, 1))],
               header="# density 100")
     model = ModelLibrary([tmp_path]).get("stool")
     assert len(model.parts) == 2
