@@ -653,12 +653,14 @@ class _SyntaxErrorBuilder:
             after_previous = self._eof_span(stack)
             if isinstance(previous, Token) and previous.type in ("ARROW", "COLON") \
                     and "LBRACE" in expected:
-                what = "rule" if previous.type == "ARROW" else "branch"
+                if previous.type == "ARROW":
+                    what, choice = "rule", "`30% : A | else : B`"
+                else:
+                    what, choice = "branch", "one in parentheses `(30% : A | else : B)`"
                 return GrammarSyntaxError(
                     f"expected a {what} body after `{previous}`, found {found}",
                     after_previous,
-                    hint="e.g. `extrude(3) Mass`, a rename `Mass`, or a choice "
-                         "`30% : A | else : B`")
+                    hint=f"e.g. `extrude(3) Mass`, a rename `Mass`, or a choice {choice}")
             return GrammarSyntaxError(
                 f"expected {_readable(expected)} before {found}", after_previous)
 
