@@ -725,7 +725,8 @@ def _readable(expected: Iterable[str]) -> str:
         names -= _EXPRESSION_STARTS
         groups["NUMBER"] = "an expression"
     if len(names & _OPERATORS) > 2:
-        names -= _OPERATORS
+        # After an operand: `(` (a call) and `.` (an attribute) are rarely what is missing.
+        names -= _OPERATORS | {"LPAR"}
         groups["OPERATORS"] = "an operator"
     if "PREDECESSOR" in names and "$END" in names:
         names -= _STATEMENT_STARTS
