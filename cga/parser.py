@@ -113,18 +113,19 @@ def _too_deep(file: str) -> GrammarSyntaxError:
         "other hundreds of levels deep)", Span(file, 1, 1))
 
 
-class _StatementStartsEverywhere(PostLex):
-    """Lex the tokens that start a statement in every parser state, not only where valid.
+class _LexEverywhere(PostLex):
+    """Lex statement starts and keywords in every parser state, not only where valid.
 
     lark's contextual lexer reads only the terminals the current parser state accepts,
     so in ``op(a,`` + newline + ``B --> C`` it would read ``B - - >`` as a name and two
-    minus signs. A name followed by ``-->`` (or ``=``), or a section header, cannot mean
-    anything else in a valid grammar, so lexing them everywhere changes no valid parse
-    and lets a syntax error say "unclosed `(` before the rule `B -->`".
+    minus signs, and ``case`` where no ``case`` may stand as a plain name. A name
+    followed by ``-->`` (or ``=``), a section header or a keyword cannot mean anything
+    else in a valid grammar, so lexing them everywhere changes no valid parse, keeps the
+    keywords reserved, and lets a syntax error say "unclosed `(` before the rule `B -->`".
     """
 
     always_accept = ("PREDECESSOR", "ASSIGN_NAME", "VARIABLES_HEADER", "RULES_HEADER",
-                     "LOT_HEADER")
+                     "LOT_HEADER", "CASE", "ELSE", "AND", "OR", "NOT")
 
     def process(self, stream: Iterator[Token]) -> Iterator[Token]:
         return stream
@@ -134,7 +135,7 @@ class _StatementStartsEverywhere(PostLex):
 def _lark_parser() -> Lark:
     return Lark.open("grammar.lark", rel_to=__file__, parser="lalr",
                      propagate_positions=True, maybe_placeholders=True,
-                     postlex=_StatementStartsEverywhere())
+                     postlex=_LexEverywhere())
 
 
 # ---------------------------------------------------------------------------------
@@ -744,6 +745,9 @@ def _hint(found: str, expected: set[str]) -> str | None:
     if found in _COMPARISONS and "GT" in expected and "COMMA" in expected:
         return ("in an argument `a>b` builds a tuple; put comparisons and `and`/`or` in "
                 "parentheses, e.g. `(a >= b)`")
+    if found in ("PERCENT", "CASE") and {"LPAR", "LBRACE"} <= expected:
+        return ("a choice inside a branch goes in parentheses: "
+                "`case area > 50 : (30% : A | else : B) | else : C`")
     if found == "QUOTE":
         return 'strings are written in double quotes: "text"'
     if found == "VBAR":

@@ -58,6 +58,8 @@ CASES = [
                  id="incomplete-condition"),
     pytest.param("Rules:\nA --> op() {B C}", "unexpected name `C`", 2, 15,
                  id="successor-list-without-comma"),
+    pytest.param("Rules:\nA --> op() else", "unexpected `else`", 2, 12,
+                 id="keyword-as-successor"),
     # choices
     pytest.param("Rules:\nA --> 30% : B | case x : C",
                  "a choice cannot mix percentages and `case` conditions", 2, 17,
@@ -161,6 +163,8 @@ def test_exact_rendering_of_a_typical_error():
     ("Rules:\nA --> op(a and b) B", "put comparisons"),
     ("Rules:\nA --> op('x') B", "double quotes"),
     ("Rules:\nA --> op() B\n   | 30% : C", "every branch starts with a guard"),
+    ("Rules:\nA --> case x > 1 : 30% : B | else : C\n   | else : D", "goes in parentheses"),
+    ("Rules:\nA --> 30% : case x : B | else : C", "goes in parentheses"),
 ])
 def test_hints(source, hint_words):
     with pytest.raises(GrammarSyntaxError) as caught:
