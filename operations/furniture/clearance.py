@@ -1,0 +1,220 @@
+"""Clearance geometry: the space an item needs and the space doors and windows keep free.
+
+Three kinds of plan regions decide where furniture may stand (DESIGN §8, thesis §5.3.2):
+
+* an item's **envelope**: its body (the footprint) and its clearance boxes in front,
+  behind and at both sides, sized by the rule's ``clearanceFront/Back/Side``. The thesis
+  checked clearances by stepping four clones of the item outwards; here they are exact
+  rectangles, so a check is one intersection test;
+* a door's **keep-out zone**: on the side the leaf swings into, the quarter circle swept
+  by the leaf (radius = door width, centred on the hinge at the wall face); on the other
+  side a door-wide square in front of the opening, so nobody has to climb over furniture
+  to reach the handle;
+* a window's **strip**: the band in front of the window's span. An item that could cover
+  a window (``canCloseWindow``) must stay out of the band as deep as the item itself plus
+  its front clearance.
+
+Items turn in quarter turns only, so every envelope box is axis-aligned; boxes are
+returned as ``(minx, minz, maxx, maxz)`` relative to the item's centre.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from shapely.geometry import Point, Polygon
+
+from cga.model import OUTSIDE, FloorPlan, Wall, front_vector
+
+__all__ = [
+    "Box",
+    "EnvelopePart",
+    "envelope",
+    "half_extents",
+    "Keepout",
+    "door_keepouts",
+    "WindowStrip",
+    "window_strips",
+    "wall_side_normal",
+    "face_offset",
+    "quarter_turn_towards",
+]
+
+Box = tuple[float, float, float, float]
+"""An axis-aligned rectangle ``(minx, minz, maxx, maxz)`` in plan coordinates."""
+
+_PROBE = 1e-3
+"""How far off a wall line (m) a point is probed to tell which room lies on that side."""
+
+
+@dataclass(frozen=True)
+class EnvelopePart:
+    """One box of an item's envelope: ``"body"`` or a clearance ``"front"``, ``"back"`` or
+    ``"side"``; ``box`` is relative to the item's centre."""
+
+    kind: str
+    box: Box
+
+    @property
+    def is_body(self) -> bool:
+        return self.kind == "body"
+
+
+def half_extents(width: float, depth: float, rotation: int) -> tuple[float, float]:
+    """Half the footprint's extent along x and z for a rotation (odd turns swap them)."""
+    return (width / 2, depth / 2) if rotation % 2 == 0 else (depth / 2, width / 2)
+
+
+def _frame_box(front: tuple[float, float], s0: float, s1: float, f0: float, f1: float) -> Box:
+    """The world-aligned box of ``[s0, s1]`` across and ``[f0, f1]`` along ``front``."""
+    fx, fz = front
+    sx, sz = -fz, fx  # the item's width axis (x at rotation 0)
+    xs = [sx * s + fx * f for s in (s0, s1) for f in (f0, f1)]
+    zs = [sz * s + fz * f for s in (s0, s1) for f in (f0, f1)]
+    return (min(xs), min(zs), max(xs), max(zs))
+
+
+def envelope(width: float, depth: float, rotation: int, *, front: float = 0.0,
+             back: float = 0.0, side: float = 0.0) -> tuple[EnvelopePart, ...]:
+    """The body and clearance boxes of an item, relative to its centre.
+
+    Parameters
+    ----------
+    width, depth:
+        The model's footprint (x and z extent at rotation 0), metres.
+    rotation:
+        Quarter turns about +y; the front faces :func:`cga.model.front_vector`.
+    front, back, side:
+        Clearances in metres; a zero clearance contributes no box.
+
+    Returns
+    -------
+    tuple of EnvelopePart
+        The body first, then the non-empty clearance boxes. Clearance boxes span the
+        body's width (front/back) or depth (sides), not the corners between them.
+    """
+    f = front_vector(rotation)
+    hw, hd = width / 2, depth / 2
+    parts = [EnvelopePart("body", _frame_box(f, -hw, hw, -hd, hd))]
+    if front > 0:
+        parts.append(EnvelopePart("front", _frame_box(f, -hw, hw, hd, hd + front)))
+    if back > 0:
+        parts.append(EnvelopePart("back", _frame_box(f, -hw, hw, -hd - back, -hd)))
+    if side > 0:
+        parts.append(EnvelopePart("side", _frame_box(f, hw, hw + side, -hd, hd)))
+        parts.append(EnvelopePart("side", _frame_box(f, -hw - side, -hw, -hd, hd)))
+    return tuple(parts)
+
+
+def wall_side_normal(plan: FloorPlan, wall: Wall, at: tuple[float, float],
+                     room_id: int) -> np.ndarray:
+    """The unit normal of ``wall`` pointing into ``room_id`` (or away from the other room
+    when ``room_id`` is :data:`OUTSIDE`), found by probing the room polygons at ``at``."""
+    d = wall.direction
+    normal = np.array([-d[1], d[0]])
+    probe = Point(*(np.asarray(at) + normal * _PROBE))
+    if room_id == OUTSIDE:
+        other = next(r for r in wall.rooms if r != OUTSIDE)
+        inside = not plan.room(other).polygon.covers(probe)
+    else:
+        inside = plan.room(room_id).polygon.covers(probe)
+    return normal if inside else -normal
+
+
+def face_offset(plan: FloorPlan, room_id: int, at: tuple[float, float]) -> float:
+    """Distance from a point on a wall line to the free floor of ``room_id`` (the wall's
+    solid on that side); 0 for :data:`OUTSIDE`."""
+    if room_id == OUTSIDE:
+        return 0.0
+    return float(plan.room(room_id).interior.distance(Point(at)))
+
+
+@dataclass(frozen=True)
+class Keepout:
+    """A region furniture must not stand in, with the label used in messages."""
+
+    label: str
+    polygon: Polygon
+
+
+def _rect(origin: np.ndarray, u: np.ndarray, v: np.ndarray) -> Polygon:
+    """The parallelogram spanned by vectors ``u`` and ``v`` at ``origin``."""
+    return Polygon([origin, origin + u, origin + u + v, origin + v])
+
+
+def door_keepouts(plan: FloorPlan, room_id: int) -> list[Keepout]:
+    """The keep-out zones of every door of ``room_id`` that lie in that room.
+
+    In the room the leaf swings into: the quarter circle swept by the leaf, centred on
+    the hinge at the wall face. In the room on the other side: a door-wide square in
+    front of the opening.
+    """
+    zones = []
+    for door in plan.doors:
+        if room_id not in door.rooms:
+            continue
+        wall = plan.wall(door.wall)
+        centre = np.asarray(door.position, dtype=float)
+        along = wall.direction
+        normal = wall_side_normal(plan, wall, door.position, room_id)
+        face = centre + normal * face_offset(plan, room_id, door.position)
+        label = f"door {door.id}"
+        if door.swing_room == room_id:
+            towards_latch = along if door.hinge == "start" else -along
+            hinge = face - towards_latch * door.width / 2
+            quadrant = _rect(hinge, towards_latch * door.width, normal * door.width)
+            swing = Point(*hinge).buffer(door.width, quad_segs=16).intersection(quadrant)
+            zones.append(Keepout(f"the swing of {label}", swing))
+        else:
+            start = face - along * door.width / 2
+            zones.append(Keepout(f"the way through {label}",
+                                 _rect(start, along * door.width, normal * door.width)))
+    return zones
+
+
+@dataclass(frozen=True)
+class WindowStrip:
+    """A window seen from its room: ``start`` is one end of its span on the wall line,
+    ``along`` runs over the span (length ``width``), ``normal`` points into the room and
+    ``face`` is the wall's thickness on the room side."""
+
+    label: str
+    start: tuple[float, float]
+    along: tuple[float, float]
+    normal: tuple[float, float]
+    width: float
+    face: float
+
+    def zone(self, depth: float) -> Polygon:
+        """The band in front of the window, ``depth`` metres deep from the wall face."""
+        return _rect(np.asarray(self.start), np.asarray(self.along) * self.width,
+                     np.asarray(self.normal) * (self.face + depth))
+
+
+def window_strips(plan: FloorPlan, room_id: int) -> list[WindowStrip]:
+    """The windows of ``room_id`` as :class:`WindowStrip` records."""
+    strips = []
+    for window in plan.windows:
+        if window.room != room_id:
+            continue
+        wall = plan.wall(window.wall)
+        normal = wall_side_normal(plan, wall, window.position, room_id)
+        start = np.asarray(window.position) - wall.direction * window.width / 2
+        strips.append(WindowStrip(
+            label=f"window {window.id}",
+            start=(float(start[0]), float(start[1])),
+            along=(float(wall.direction[0]), float(wall.direction[1])),
+            normal=(float(normal[0]), float(normal[1])),
+            width=window.width,
+            face=face_offset(plan, room_id, window.position),
+        ))
+    return strips
+
+
+_FRONTS = np.array([front_vector(r) for r in range(4)])
+
+
+def quarter_turn_towards(direction: tuple[float, float] | np.ndarray) -> int:
+    """The rotation whose front vector is closest to ``direction``."""
+    return int(np.argmax(_FRONTS @ np.asarray(direction, dtype=float)))

@@ -1,0 +1,363 @@
+"""The furniture of one room while it is being placed: exact conflict tests and sweeps.
+
+A :class:`Layout` holds the room's free floor, its door keep-out zones and window strips,
+and the items placed so far (body and clearance boxes, :mod:`.clearance`). It answers two
+questions exactly, with shapely polygons indexed by a :class:`shapely.STRtree`:
+
+* :meth:`Layout.conflicts`: what blocks an item at a given pose;
+* :meth:`Layout.free_intervals`: for an item sliding along the x or z axis, every centre
+  coordinate at which nothing blocks it. This replaces the thesis' stepwise movement of
+  clones (thesis §5.3.2): each obstacle forbids one open interval of positions, found by
+  clipping the obstacle with the strip the item sweeps and projecting the pieces.
+
+What blocks what (DESIGN §8):
+
+* the walls (everything outside the free floor) block bodies and clearance boxes;
+* a solid item's body blocks other bodies and clearance boxes;
+* a clearance box blocks other bodies, except those of the item's own parent or
+  children (chairs stand in the table's clearance, the coffee table in the sofa's);
+* door keep-out zones block bodies; window strips block the bodies of ``canCloseWindow``
+  items;
+* non-colliding items (rugs) block nothing and are blocked only by the walls.
+
+Touching is allowed: boxes are shrunk by :data:`EPS` before testing, so two items may
+share an edge and a wall item may stand flush against its wall.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import shapely
+from shapely import STRtree
+from shapely.geometry import Polygon, box
+
+from .clearance import Box, EnvelopePart, Keepout, WindowStrip, envelope
+from .rules import FurnitureRule
+
+__all__ = ["EPS", "ItemSpec", "Pose", "Conflict", "Layout", "nearest_in"]
+
+EPS = 1e-6
+"""Boxes are shrunk by this much (m) before intersection tests: touching is not overlap."""
+
+_AREA_EPS = 1e-12
+
+
+@dataclass(frozen=True)
+class ItemSpec:
+    """An item to place: its rule (distances in metres) and its model's size in metres."""
+
+    rule: FurnitureRule
+    model: str
+    size: tuple[float, float, float]
+
+    @property
+    def name(self) -> str:
+        return self.rule.name
+
+    @property
+    def width(self) -> float:
+        return self.size[0]
+
+    @property
+    def depth(self) -> float:
+        return self.size[2]
+
+    def parts(self, rotation: int) -> tuple[EnvelopePart, ...]:
+        """Body and clearance boxes relative to the centre (see :func:`.clearance.envelope`)."""
+        r = self.rule
+        return _envelope(self.width, self.depth, rotation % 4, r.clearance_front,
+                         r.clearance_back, r.clearance_side)
+
+
+@lru_cache(maxsize=4096)
+def _envelope(width: float, depth: float, rotation: int, front: float, back: float,
+              side: float) -> tuple[EnvelopePart, ...]:
+    return envelope(width, depth, rotation, front=front, back=back, side=side)
+
+
+@dataclass(frozen=True)
+class Pose:
+    """Where an item stands: the centre of its footprint and its quarter turns."""
+
+    x: float
+    z: float
+    rotation: int
+
+    def moved(self, axis: int, value: float) -> "Pose":
+        """A copy with the centre coordinate ``axis`` (0 = x, 1 = z) set to ``value``."""
+        return Pose(value, self.z, self.rotation) if axis == 0 else Pose(self.x, value,
+                                                                          self.rotation)
+
+
+@dataclass(frozen=True)
+class Conflict:
+    """Part ``part`` of an item is blocked by ``blocker`` (an item name or a label) of
+    kind ``"wall"``, ``"body"``, ``"clearance"``, ``"door"`` or ``"window"``."""
+
+    part: str
+    kind: str
+    blocker: str
+
+    def describe(self) -> str:
+        """A short reason, e.g. ``"clearance front blocked by sofa"``."""
+        if self.part != "body":
+            what = "a wall" if self.kind == "wall" else self.blocker
+            return f"clearance {self.part} blocked by {what}"
+        return {
+            "wall": "does not fit between the walls",
+            "body": f"overlaps {self.blocker}",
+            "clearance": f"stands in the clearance of {self.blocker}",
+            "door": f"blocks {self.blocker}",
+            "window": f"covers {self.blocker}",
+        }[self.kind]
+
+
+@dataclass(frozen=True)
+class _Entry:
+    """An obstacle; ``rectangle`` holds its bounds when it is an axis-aligned rectangle."""
+
+    kind: str
+    owner: str | None
+    geometry: Polygon
+    rectangle: Box | None
+
+
+def _rectangle(geometry: Polygon) -> Box | None:
+    """The bounds when ``geometry`` is an axis-aligned rectangle, else None."""
+    minx, miny, maxx, maxy = geometry.bounds
+    if len(geometry.interiors) or abs(geometry.area - (maxx - minx) * (maxy - miny)) > _AREA_EPS:
+        return None
+    return (minx, miny, maxx, maxy)
+
+
+def _part_boxes(parts: tuple[EnvelopePart, ...], x: float, z: float) -> np.ndarray:
+    """The parts placed at ``(x, z)`` as shapely boxes shrunk by :data:`EPS`."""
+    b = np.array([p.box for p in parts]) + np.array([x + EPS, z + EPS, x - EPS, z - EPS])
+    return shapely.box(b[:, 0], b[:, 1], b[:, 2], b[:, 3])
+
+
+def _outside_pieces(interior: Polygon, margin: float = 1.0) -> list[Polygon]:
+    """The region around ``interior`` (out to ``margin``) as hole-free pieces: the frame
+    cut into vertical slabs at every vertex x. Clipping a strip against these is far
+    cheaper than against one polygon with a hole."""
+    minx, minz, maxx, maxz = interior.bounds
+    xs = sorted({minx - margin, maxx + margin, *(x for x, _ in interior.exterior.coords)})
+    slabs = shapely.box(np.array(xs[:-1]), minz - margin, np.array(xs[1:]), maxz + margin)
+    pieces = shapely.get_parts(shapely.difference(slabs, interior))
+    return [p for p in pieces if p.area > _AREA_EPS]
+
+
+def nearest_in(intervals: list[tuple[float, float]], preferred: float) -> float | None:
+    """The point of the closed ``intervals`` nearest to ``preferred`` (None if empty)."""
+    best, best_distance = None, float("inf")
+    for lo, hi in intervals:
+        value = min(max(preferred, lo), hi)
+        if abs(value - preferred) < best_distance:
+            best, best_distance = value, abs(value - preferred)
+    return best
+
+
+class Layout:
+    """The items placed in one room so far; see the module docstring.
+
+    Parameters
+    ----------
+    interior:
+        The room's free floor.
+    keepouts:
+        Door keep-out zones in this room.
+    windows:
+        The room's windows.
+    """
+
+    def __init__(self, interior: Polygon, keepouts: list[Keepout] = (),
+                 windows: list[WindowStrip] = ()):
+        self.interior = interior
+        self._static = [_Entry("wall", "a wall", piece, _rectangle(piece))
+                        for piece in _outside_pieces(interior)]
+        self._static += [_Entry("door", k.label, k.polygon, _rectangle(k.polygon))
+                         for k in keepouts]
+        self.windows = tuple(windows)
+        self.placed: dict[str, tuple[ItemSpec, Pose]] = {}
+        self._item_entries: dict[str, list[_Entry]] = {}
+        self._entries: list[_Entry] | None = None
+        self._tree: STRtree | None = None
+        self._window_zones: dict[str, list[tuple[str, Polygon]]] = {}
+
+    # -- state ---------------------------------------------------------------------------
+    def add(self, spec: ItemSpec, pose: Pose) -> None:
+        """Place ``spec`` at ``pose`` (no check; call :meth:`conflicts` first)."""
+        self.placed[spec.name] = (spec, pose)
+        if not spec.rule.non_collision:
+            parts = spec.parts(pose.rotation)
+            self._item_entries[spec.name] = [
+                _Entry("body" if part.is_body else "clearance", spec.name, geometry,
+                       shapely.bounds(geometry).tolist())
+                for part, geometry in zip(parts, _part_boxes(parts, pose.x, pose.z))]
+        self._tree = None
+
+    def remove(self, name: str) -> tuple[ItemSpec, Pose]:
+        """Take an item out again; returns what it was."""
+        self._tree = None
+        self._item_entries.pop(name, None)
+        return self.placed.pop(name)
+
+    def pose(self, name: str) -> Pose | None:
+        entry = self.placed.get(name)
+        return entry[1] if entry else None
+
+    def _index(self) -> tuple[list[_Entry], STRtree]:
+        if self._tree is None:
+            entries = list(self._static)
+            for item_entries in self._item_entries.values():
+                entries.extend(item_entries)
+            self._entries = entries
+            self._tree = STRtree([e.geometry for e in entries])
+        assert self._entries is not None
+        return self._entries, self._tree
+
+    def _windows_for(self, spec: ItemSpec) -> list[tuple[str, Polygon]]:
+        if not spec.rule.can_close_window or not self.windows:
+            return []
+        zones = self._window_zones.get(spec.name)
+        if zones is None:
+            depth = spec.depth + spec.rule.clearance_front
+            zones = [(w.label, w.zone(depth)) for w in self.windows]
+            self._window_zones[spec.name] = zones
+        return zones
+
+    @staticmethod
+    def _blocks(spec: ItemSpec, is_body: bool, entry: _Entry, related: frozenset[str]) -> bool:
+        if entry.owner == spec.name:
+            return False
+        if entry.kind == "wall":
+            return True
+        if spec.rule.non_collision:
+            return False
+        if entry.kind == "body":
+            return True
+        if entry.kind == "clearance":
+            return is_body and entry.owner not in related
+        return is_body  # door zones
+
+    # -- queries -------------------------------------------------------------------------
+    def conflicts(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset(),
+                  *, first: bool = False) -> list[Conflict]:
+        """What blocks ``spec`` at ``pose``; ``related`` names its parent and children.
+
+        With ``first=True`` the search stops at the first conflict found (walls first).
+        """
+        entries, tree = self._index()
+        parts = spec.parts(pose.rotation)
+        geometries = _part_boxes(parts, pose.x, pose.z)
+        found: list[Conflict] = []
+        hits = tree.query(geometries, predicate="intersects")
+        for part_index, entry_index in sorted(zip(*hits), key=lambda h: (h[1], h[0])):
+            part, entry = parts[part_index], entries[entry_index]
+            if self._blocks(spec, part.is_body, entry, related):
+                found.append(Conflict(part.kind, entry.kind, entry.owner or ""))
+                if first:
+                    return found
+        for label, zone in self._windows_for(spec):
+            if zone.intersects(geometries[0]):
+                found.append(Conflict("body", "window", label))
+                if first:
+                    return found
+        return found
+
+    def fits(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset()) -> bool:
+        """True when nothing blocks ``spec`` at ``pose``."""
+        return not self.conflicts(spec, pose, related, first=True)
+
+    def free_intervals(self, spec: ItemSpec, rotation: int, axis: int, fixed: float,
+                       lo: float, hi: float, related: frozenset[str] = frozenset()
+                       ) -> list[tuple[float, float]]:
+        """Centre coordinates along ``axis`` in ``[lo, hi]`` where nothing blocks ``spec``.
+
+        Parameters
+        ----------
+        spec, rotation:
+            The item and its quarter turns.
+        axis:
+            0 to slide along x (the centre's z is ``fixed``), 1 to slide along z.
+        lo, hi:
+            The range of the sliding centre coordinate.
+        related:
+            The item's parent and children (see :meth:`conflicts`).
+
+        Returns
+        -------
+        list of (start, end)
+            Disjoint closed intervals in increasing order (a single free position gives a
+            zero-length interval).
+
+        Notes
+        -----
+        Exact: every obstacle clipped to the strip a part sweeps forbids the open interval
+        of centres at which the part overlaps it. Cost O(k log n) for k obstacles near the
+        strip among n.
+        """
+        if hi < lo:
+            return []
+        entries, tree = self._index()
+        parts = spec.parts(rotation)
+        boxes = np.array([p.box for p in parts])
+        a0, a1 = (boxes[:, 0], boxes[:, 2]) if axis == 0 else (boxes[:, 1], boxes[:, 3])
+        p0, p1 = (boxes[:, 1], boxes[:, 3]) if axis == 0 else (boxes[:, 0], boxes[:, 2])
+        along = (lo + a0, hi + a1)
+        across = (fixed + p0 + EPS, fixed + p1 - EPS)
+        strips = (shapely.box(along[0], across[0], along[1], across[1]) if axis == 0
+                  else shapely.box(across[0], along[0], across[1], along[1]))
+        rectangles: list[tuple[int, Box]] = []
+        shapes: list[tuple[int, Polygon]] = []
+        for i, j in zip(*tree.query(strips, predicate="intersects")):
+            entry = entries[j]
+            if self._blocks(spec, parts[i].is_body, entry, related):
+                rectangle = entry.rectangle
+                if rectangle is None:
+                    shapes.append((i, entry.geometry))
+                else:
+                    rectangles.append((i, rectangle))
+        for _, zone in self._windows_for(spec):
+            if zone.intersects(strips[0]):
+                rectangle = _rectangle(zone)
+                if rectangle is None:
+                    shapes.append((0, zone))
+                else:
+                    rectangles.append((0, rectangle))
+        strip_bounds = shapely.bounds(strips)
+        spans: list[tuple[int, float, float]] = []
+        for i, r in rectangles:  # clipping a rectangle is bounds arithmetic
+            c = (max(r[0], strip_bounds[i, 0]), max(r[1], strip_bounds[i, 1]),
+                 min(r[2], strip_bounds[i, 2]), min(r[3], strip_bounds[i, 3]))
+            if (c[2] - c[0]) * (c[3] - c[1]) > _AREA_EPS and c[2] > c[0] and c[3] > c[1]:
+                spans.append((i, c[axis], c[axis + 2]))
+        if shapes:
+            index = np.array([i for i, _ in shapes])
+            clipped = shapely.intersection(np.array([g for _, g in shapes], dtype=object),
+                                           strips[index])
+            pieces, owner = shapely.get_parts(clipped, return_index=True)
+            keep = shapely.area(pieces) > _AREA_EPS
+            for i, b in zip(index[owner[keep]], shapely.bounds(pieces[keep])):
+                spans.append((int(i), b[axis], b[axis + 2]))
+        forbidden = [(s0 - a1[i], s1 - a0[i]) for i, s0, s1 in spans]
+        return _complement(forbidden, lo, hi)
+
+
+def _complement(forbidden: list[tuple[float, float]], lo: float, hi: float
+                ) -> list[tuple[float, float]]:
+    """``[lo, hi]`` minus the union of open intervals."""
+    free = []
+    cursor = lo  # the smallest point not known to be forbidden
+    for start, end in sorted(forbidden):
+        if cursor > hi:
+            break
+        if start >= cursor:
+            free.append((cursor, min(start, hi)))
+        cursor = max(cursor, end)
+    if cursor <= hi:
+        free.append((cursor, hi))
+    return free

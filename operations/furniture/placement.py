@@ -1,0 +1,623 @@
+"""Placing one item by its rule: corner, wall, around / beside / in front of a parent.
+
+The strategies follow the thesis (§5.3.2-5.3.3, figures 3.3 and 3.4) with exact geometry
+instead of stepwise movement (:meth:`.layout.Layout.free_intervals`):
+
+* **corner** items try each convex corner of the free floor, nearest first, in both
+  orientations (back against one wall or the other), flush with both walls after their
+  clearances;
+* **wall** items go to the nearest wall long enough for them, back to the wall (a side,
+  for ``needsTurn``), front into the room, and slide along it to the free position
+  nearest their start; then the next wall;
+* **children** stand relative to their placed parent: ``canBeAround`` on the parent's
+  free sides, facing it, spread evenly when several share a side (chairs round a table);
+  ``isOnTheSide`` right beside it, same orientation, backs aligned (a nightstand by a
+  bed); otherwise in front of it, facing it, ``minPairDistance``..``maxPairDistance``
+  away (a coffee table), or against the wall opposite the parent when the child is a
+  wall item (a tv board). A parent with no other children then shifts sideways to face
+  such a child when that keeps everything valid;
+* **free** items (no placement flag) stand at the free spot nearest their start;
+* **non-colliding** items (rugs) lie in the middle of the room.
+
+A strategy either places the item in the :class:`~.layout.Layout` or returns the reason
+it could not, naming what blocked it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from shapely.geometry import Polygon
+from shapely.geometry.polygon import orient
+
+from cga.model import front_vector
+
+from .clearance import Box, quarter_turn_towards
+from .layout import Conflict, ItemSpec, Layout, Pose, nearest_in
+
+__all__ = ["Edge", "Corner", "room_edges", "convex_corners", "Placer"]
+
+_TOLERANCE = 1e-9
+_FREE_SAMPLES = 8
+"""Random extra start points a free-standing item tries when its own start is blocked."""
+_LOOKAHEAD = 8
+"""Candidate poses a parent tries for a place where all its children fit."""
+
+
+@dataclass(frozen=True)
+class Edge:
+    """A straight piece of a room's free-floor boundary with the normal into the room.
+
+    ``axis`` is 0 for an edge along x, 1 along z and None for a slanted edge (furniture
+    turns in quarter turns, so only axis-aligned edges take wall items).
+    """
+
+    start: tuple[float, float]
+    end: tuple[float, float]
+
+    @cached_property
+    def direction(self) -> np.ndarray:
+        d = np.subtract(self.end, self.start)
+        return d / np.linalg.norm(d)
+
+    @cached_property
+    def normal(self) -> np.ndarray:
+        d = self.direction
+        return np.array([-d[1], d[0]])  # left of a counter-clockwise ring: inward
+
+    @cached_property
+    def length(self) -> float:
+        return math.dist(self.start, self.end)
+
+    @cached_property
+    def axis(self) -> int | None:
+        dx, dz = np.subtract(self.end, self.start)
+        if abs(dz) <= _TOLERANCE * max(1.0, abs(dx)):
+            return 0
+        if abs(dx) <= _TOLERANCE * max(1.0, abs(dz)):
+            return 1
+        return None
+
+    @cached_property
+    def line(self) -> float:
+        """The edge's constant coordinate (z for an edge along x, x along z)."""
+        return self.start[1] if self.axis == 0 else self.start[0]
+
+    @cached_property
+    def span(self) -> tuple[float, float]:
+        """The edge's extent along its own axis."""
+        i = 0 if self.axis == 0 else 1
+        return (min(self.start[i], self.end[i]), max(self.start[i], self.end[i]))
+
+    def distance_to(self, point: tuple[float, float]) -> float:
+        p, a = np.asarray(point, dtype=float), np.asarray(self.start, dtype=float)
+        d = np.subtract(self.end, self.start)
+        t = np.clip(np.dot(p - a, d) / np.dot(d, d), 0.0, 1.0)
+        return float(np.linalg.norm(p - (a + t * d)))
+
+
+@dataclass(frozen=True)
+class Corner:
+    """A convex corner of the free floor: the vertex and the edges meeting there."""
+
+    vertex: tuple[float, float]
+    edges: tuple[Edge, Edge]
+
+
+def room_edges(interior: Polygon) -> list[Edge]:
+    """The edges of a room's free floor, counter-clockwise, collinear pieces merged."""
+    ring = list(orient(interior, sign=1.0).exterior.coords)[:-1]
+    points: list[tuple[float, float]] = []
+    for i, p in enumerate(ring):
+        prev, nxt = np.asarray(ring[i - 1]), np.asarray(ring[(i + 1) % len(ring)])
+        a, b = np.asarray(p) - prev, nxt - np.asarray(p)
+        cross = a[0] * b[1] - a[1] * b[0]
+        if abs(cross) > _TOLERANCE * np.linalg.norm(a) * np.linalg.norm(b) or np.dot(a, b) < 0:
+            points.append((float(p[0]), float(p[1])))
+    return [Edge(points[i], points[(i + 1) % len(points)]) for i in range(len(points))]
+
+
+def convex_corners(edges: list[Edge]) -> list[Corner]:
+    """The right-angled convex corners between consecutive axis-aligned edges."""
+    corners = []
+    for i, out in enumerate(edges):
+        inc = edges[i - 1]
+        if inc.axis is None or out.axis is None or inc.axis == out.axis:
+            continue
+        a, b = inc.direction, out.direction
+        if a[0] * b[1] - a[1] * b[0] > 0:
+            corners.append(Corner(out.start, (inc, out)))
+    return corners
+
+
+def _bbox(boxes: list[Box]) -> Box:
+    return (min(b[0] for b in boxes), min(b[1] for b in boxes),
+            max(b[2] for b in boxes), max(b[3] for b in boxes))
+
+
+def _flush(bbox: Box, normal: np.ndarray, line: float) -> tuple[int, float]:
+    """(axis, centre coordinate) that puts ``bbox`` against the wall at ``line`` whose
+    inward normal is ``normal``."""
+    axis = 0 if abs(normal[0]) > 0.5 else 1
+    if normal[axis] > 0:
+        return axis, line - bbox[axis]
+    return axis, line - bbox[axis + 2]
+
+
+class Placer:
+    """Places items one by one into a :class:`~.layout.Layout` by their rules.
+
+    Parameters
+    ----------
+    layout:
+        The room's layout; strategies add (and may move) items in it.
+    specs:
+        Every item of the room (to know parents and children).
+    rng:
+        Random stream for free-standing items' extra start points and orientations.
+
+    Notes
+    -----
+    A parent is placed together with its family: at each candidate pose (nearest first)
+    its children are seated at once, and the first pose that seats them all is kept
+    (else the one seating most, among the first :data:`_LOOKAHEAD`). The thesis placed
+    the sofa first and found out only later that the tv board had no wall left.
+    """
+
+    def __init__(self, layout: Layout, specs: Sequence[ItemSpec], rng: np.random.Generator):
+        self.layout = layout
+        self.edges = room_edges(layout.interior)
+        self.corners = convex_corners(self.edges)
+        self.rng = rng
+        self.children: dict[str, list[ItemSpec]] = {}
+        for spec in specs:
+            if spec.rule.pair_with is not None:
+                self.children.setdefault(spec.rule.pair_with, []).append(spec)
+        self.related = {s.name: frozenset([c.name for c in self.children.get(s.name, [])]
+                                          + ([s.rule.pair_with] if s.rule.pair_with else []))
+                        for s in specs}
+        self.sides: dict[str, tuple[str, int]] = {}  # around-child → (parent, side index)
+
+    # -- helpers -------------------------------------------------------------------------
+    def _conflict(self, spec: ItemSpec, pose: Pose) -> Conflict | None:
+        found = self.layout.conflicts(spec, pose, self.related.get(spec.name, frozenset()),
+                                      first=True)
+        return found[0] if found else None
+
+    def _try(self, spec: ItemSpec, pose: Pose) -> Conflict | None:
+        """Add ``spec`` at ``pose`` if nothing blocks it; else return the conflict."""
+        conflict = self._conflict(spec, pose)
+        if conflict is None:
+            self.layout.add(spec, pose)
+        return conflict
+
+    def _free_poses(self, spec: ItemSpec, rotation: int, axis: int, fixed: float, lo: float,
+                    hi: float, preferred: float) -> Iterator[Pose]:
+        """Poses on a segment at which nothing blocks ``spec``: per free interval the
+        point nearest ``preferred``, nearest intervals first."""
+        related = self.related.get(spec.name, frozenset())
+        intervals = self.layout.free_intervals(spec, rotation, axis, fixed, lo, hi, related)
+        intervals.sort(key=lambda iv: abs(min(max(preferred, iv[0]), iv[1]) - preferred))
+        for interval in intervals:
+            value = nearest_in([interval], preferred)
+            assert value is not None
+            pose = _pose(axis, value, 1 - axis, fixed, rotation)
+            if self._conflict(spec, pose) is None:
+                yield pose
+
+    def _slide(self, spec: ItemSpec, rotation: int, axis: int, fixed: float, lo: float,
+               hi: float, preferred: float) -> Pose | None:
+        """Add ``spec`` at the free position on the segment nearest ``preferred``."""
+        pose = next(self._free_poses(spec, rotation, axis, fixed, lo, hi, preferred), None)
+        if pose is not None:
+            self.layout.add(spec, pose)
+        return pose
+
+    # -- dispatch ------------------------------------------------------------------------
+    def place(self, spec: ItemSpec, start: tuple[float, float] | None) -> str | None:
+        """Place ``spec`` by its rule; None on success, else the reason it was left out.
+
+        ``start`` is the item's steered start position (None for children). An item
+        already seated with its parent's family is left as it is.
+        """
+        rule = spec.rule
+        if spec.name in self.layout.placed:
+            return None
+        if rule.pair_with is not None:
+            if rule.pair_with not in self.layout.placed:
+                return f"parent {rule.pair_with} not placed"
+            return self._place_child(spec)
+        centre = start if start is not None else self._room_centre()
+        if rule.non_collision:
+            return self.middle(spec)
+        if rule.is_in_corner:
+            return self.corner(spec, centre)
+        if rule.is_along_wall:
+            return self.along_wall(spec, centre)
+        return self.free(spec, centre)
+
+    def _place_child(self, spec: ItemSpec) -> str | None:
+        parent = spec.rule.pair_with
+        assert parent is not None
+        if spec.rule.can_be_around:
+            return self.around(spec, parent)
+        if spec.rule.is_on_the_side:
+            return self.beside(spec, parent)
+        return self.in_front(spec, parent)
+
+    def _descendants(self, name: str) -> list[ItemSpec]:
+        out = []
+        for child in self.children.get(name, []):
+            out.append(child)
+            out.extend(self._descendants(child.name))
+        return out
+
+    def _commit(self, spec: ItemSpec, poses: Iterator[Pose]) -> bool:
+        """Place ``spec`` at the first of ``poses`` where its whole family fits (see the
+        class notes); False when ``poses`` is empty."""
+        family = self._descendants(spec.name)
+        best: tuple[int, Pose] | None = None
+        for count, pose in enumerate(poses, start=1):
+            self.layout.add(spec, pose)
+            seated = [c.name for c in family if c.rule.pair_with in self.layout.placed
+                      and self._place_child(c) is None]
+            if len(seated) == len(family):
+                return True
+            if best is None or len(seated) > best[0]:
+                best = (len(seated), pose)
+            for name in (*seated, spec.name):
+                self.layout.remove(name)
+                self.sides.pop(name, None)
+            if count >= _LOOKAHEAD:
+                break
+        if best is None:
+            return False
+        self.layout.add(spec, best[1])
+        for child in family:
+            if child.rule.pair_with in self.layout.placed:
+                self._place_child(child)
+        return True
+
+    def _room_centre(self) -> tuple[float, float]:
+        c = self.layout.interior.centroid
+        if not self.layout.interior.contains(c):
+            c = self.layout.interior.representative_point()
+        return (c.x, c.y)
+
+    # -- parents and single items --------------------------------------------------------
+    def corner(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
+        """Put ``spec`` in the nearest free corner, trying both orientations."""
+        if not self.corners:
+            return "the room has no right-angled corner"
+        blocked: list[Conflict] = []
+
+        def poses() -> Iterator[Pose]:
+            for corner in sorted(self.corners, key=lambda c: math.dist(c.vertex, start)):
+                for back_edge in corner.edges:
+                    rotation = quarter_turn_towards(back_edge.normal)
+                    bbox = _bbox([p.box for p in spec.parts(rotation)])
+                    coords = [0.0, 0.0]
+                    for edge in corner.edges:
+                        axis, value = _flush(bbox, edge.normal, edge.line)
+                        coords[axis] = value
+                    pose = Pose(coords[0], coords[1], rotation)
+                    conflict = self._conflict(spec, pose)
+                    if conflict is None:
+                        yield pose
+                    else:
+                        blocked.append(conflict)
+
+        if self._commit(spec, poses()):
+            return None
+        return f"every corner is blocked (nearest: {blocked[0].describe()})"
+
+    def _wall_rotations(self, spec: ItemSpec, edge: Edge) -> list[int]:
+        if not spec.rule.needs_turn:
+            return [quarter_turn_towards(edge.normal)]
+        return [quarter_turn_towards(edge.direction), quarter_turn_towards(-edge.direction)]
+
+    def along_wall(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
+        """Put ``spec`` against the nearest wall with room, at the spot nearest ``start``."""
+        candidates = []
+        for edge in self.edges:
+            if edge.axis is None:
+                continue
+            for rotation in self._wall_rotations(spec, edge):
+                bbox = _bbox([p.box for p in spec.parts(rotation)])
+                candidates.append((edge, rotation, bbox[edge.axis + 2] - bbox[edge.axis]))
+        if not candidates:
+            return "the room has no straight axis-aligned wall"
+        need = min(c[2] for c in candidates)
+        usable = sorted((c for c in candidates if c[0].length >= c[2] - 1e-9),
+                        key=lambda c: c[0].distance_to(start))
+        if not usable:
+            return f"no wall long enough for {spec.name} (needs {need:.2f} m)"
+        blocked: list[Conflict] = []
+
+        def poses() -> Iterator[Pose]:
+            for edge, rotation, _ in usable:
+                axis = edge.axis
+                assert axis is not None
+                parts = spec.parts(rotation)
+                body = parts[0].box
+                _, fixed = _flush(_bbox([p.box for p in parts]), edge.normal, edge.line)
+                lo, hi = edge.span
+                lo, hi = lo - body[axis], hi - body[axis + 2]
+                preferred = min(max(start[axis], lo), hi)
+                found = False
+                for pose in self._free_poses(spec, rotation, axis, fixed, lo, hi, preferred):
+                    found = True
+                    yield pose
+                if not found and not blocked:
+                    conflict = self._conflict(spec, _pose(axis, preferred, 1 - axis, fixed,
+                                                          rotation))
+                    if conflict is not None:
+                        blocked.append(conflict)
+
+        if self._commit(spec, poses()):
+            return None
+        reason = f"no free wall long enough for {spec.name} ({need:.2f} m)"
+        return f"{reason}; nearest wall: {blocked[0].describe()}" if blocked else reason
+
+    def free(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
+        """Put a free-standing item at the free spot nearest ``start``."""
+        rotations = [0, 1] if self.rng.random() < 0.5 else [1, 0]
+        minx, minz, maxx, maxz = self.layout.interior.bounds
+        extra = self.rng.uniform((minx, minz), (maxx, maxz), size=(_FREE_SAMPLES, 2))
+        blocked: list[Conflict] = []
+
+        def poses() -> Iterator[Pose]:
+            for rotation in rotations:
+                pose = Pose(start[0], start[1], rotation)
+                conflict = self._conflict(spec, pose)
+                if conflict is None:
+                    yield pose
+                else:
+                    blocked.append(conflict)
+            for point in [start, *map(tuple, extra)]:
+                options = []
+                for rotation in rotations:
+                    for axis in (0, 1):
+                        lo, hi = (minx, maxx) if axis == 0 else (minz, maxz)
+                        for pose in self._free_poses(spec, rotation, axis, point[1 - axis],
+                                                     lo, hi, point[axis]):
+                            options.append((abs((pose.x, pose.z)[axis] - point[axis]),
+                                            rotation, axis, pose))
+                            break
+                yield from (pose for *_, pose in sorted(options, key=lambda o: o[:3]))
+
+        if self._commit(spec, poses()):
+            return None
+        return f"no free spot for {spec.name} ({blocked[0].describe()})"
+
+    def middle(self, spec: ItemSpec) -> str | None:
+        """Lay a non-colliding item (a rug) in the middle of the room, long side along the
+        room's long side."""
+        minx, minz, maxx, maxz = self.layout.interior.bounds
+        along_x = (maxx - minx >= maxz - minz) == (spec.width >= spec.depth)
+        x, z = self._room_centre()
+        poses = (Pose(x, z, rotation) for rotation in ((0, 1) if along_x else (1, 0))
+                 if self._conflict(spec, Pose(x, z, rotation)) is None)
+        if self._commit(spec, poses):
+            return None
+        return f"{spec.name} does not fit in the middle of the room"
+
+    # -- children ------------------------------------------------------------------------
+    def _parent(self, name: str) -> tuple[ItemSpec, Pose, Box]:
+        spec, pose = self.layout.placed[name]
+        b = spec.parts(pose.rotation)[0].box
+        return spec, pose, (pose.x + b[0], pose.z + b[1], pose.x + b[2], pose.z + b[3])
+
+    @staticmethod
+    def _sides(pose: Pose) -> list[np.ndarray]:
+        """The parent's side normals: front, back, then its two flanks."""
+        f = np.array(front_vector(pose.rotation))
+        s = np.array([-f[1], f[0]])
+        return [f, -f, s, -s]
+
+    def around(self, spec: ItemSpec, parent: str) -> str | None:
+        """Put a child on a free side of its parent, facing it; siblings sharing a side
+        are spread evenly along it."""
+        pspec, ppose, pbox = self._parent(parent)
+        gap = spec.rule.min_pair_distance
+        sides = self._sides(ppose)
+        count = [sum(1 for p, i in self.sides.values() if p == parent and i == k)
+                 for k in range(4)]
+        order = sorted(range(4), key=lambda k: (count[k], k))
+        first: Conflict | None = None
+        for k in order:
+            normal = sides[k]
+            rotation = quarter_turn_towards(-normal)
+            geometry = self._side_geometry(spec, rotation, pbox, normal, gap)
+            if self._spread(spec, parent, k, rotation, geometry):
+                self.sides[spec.name] = (parent, k)
+                return None
+            axis, fixed, lo, hi = geometry
+            half = _half(spec, rotation, axis)
+            if hi - lo >= 2 * half and self._slide(spec, rotation, axis, fixed, lo + half,
+                                                   hi - half, (lo + hi) / 2) is not None:
+                self.sides[spec.name] = (parent, k)
+                return None
+            if first is None:
+                centre = (lo + hi) / 2
+                probe = Pose(centre, fixed, rotation) if axis == 0 else Pose(fixed, centre,
+                                                                              rotation)
+                first = self._conflict(spec, probe)
+        detail = f" ({first.describe()})" if first else ""
+        return f"no free side of {parent}{detail}"
+
+    def _side_geometry(self, spec: ItemSpec, rotation: int, pbox: Box, normal: np.ndarray,
+                       gap: float) -> tuple[int, float, float, float]:
+        """(slide axis, fixed centre coordinate, side start, side end) of a child standing
+        ``gap`` off the parent's side with outward ``normal``."""
+        body = spec.parts(rotation)[0].box
+        n_axis = 0 if abs(normal[0]) > 0.5 else 1
+        if normal[n_axis] > 0:
+            fixed = pbox[n_axis + 2] + gap - body[n_axis]
+        else:
+            fixed = pbox[n_axis] - gap - body[n_axis + 2]
+        axis = 1 - n_axis
+        return axis, fixed, pbox[axis], pbox[axis + 2]
+
+    def _spread(self, spec: ItemSpec, parent: str, side: int, rotation: int,
+                geometry: tuple[int, float, float, float]) -> bool:
+        """Try to seat ``spec`` with the siblings already on ``side``, all evenly spaced."""
+        axis, fixed, lo, hi = geometry
+        siblings = sorted((n for n, (p, k) in self.sides.items() if p == parent and k == side),
+                          key=lambda n: (self.layout.placed[n][1].x, self.layout.placed[n][1].z)[axis])
+        width = 2 * _half(spec, rotation, axis)
+        count = len(siblings) + 1
+        if count > 1 and count * width > hi - lo + 1e-9:
+            return False
+        slots = [lo + (i + 0.5) * (hi - lo) / count for i in range(count)]
+        saved = {n: self.layout.remove(n) for n in siblings}
+        for new_slot in range(count - 1, -1, -1):
+            order = siblings[:new_slot] + [spec.name] + siblings[new_slot:]
+            seated = []
+            for name, slot in zip(order, slots):
+                item = spec if name == spec.name else saved[name][0]
+                pose_rotation = rotation if name == spec.name else saved[name][1].rotation
+                pose = Pose(slot, fixed, pose_rotation) if axis == 0 else Pose(
+                    fixed, slot, pose_rotation)
+                if self._try(item, pose) is not None:
+                    break
+                seated.append(name)
+            if len(seated) == count:
+                return True
+            for name in seated:
+                self.layout.remove(name)
+        for name, (item, pose) in saved.items():
+            self.layout.add(item, pose)
+        return False
+
+    def beside(self, spec: ItemSpec, parent: str) -> str | None:
+        """Put a child right beside its parent, same orientation, backs aligned."""
+        pspec, ppose, pbox = self._parent(parent)
+        rule = spec.rule
+        rotation = ppose.rotation
+        # the child's centre along the parent's front axis: backs on one line
+        centre = np.array([ppose.x, ppose.z]) + np.array(front_vector(rotation)) * (
+            spec.depth - pspec.depth) / 2
+        first: Conflict | None = None
+        for normal in self._sides(ppose)[2:]:
+            axis, near, _, _ = self._side_geometry(spec, rotation, pbox, normal,
+                                                   rule.min_pair_distance)
+            side_axis = 1 - axis  # ``axis`` runs along the parent's front
+            conflict = self._try(spec, _pose(side_axis, near, axis, float(centre[axis]),
+                                             rotation))
+            if conflict is None:
+                return None
+            first = first or conflict
+            if rule.max_gap is not None and rule.max_gap > rule.min_pair_distance:
+                _, far, _, _ = self._side_geometry(spec, rotation, pbox, normal, rule.max_gap)
+                lo, hi = sorted((near, far))
+                if self._slide(spec, rotation, side_axis, float(centre[axis]), lo, hi,
+                               near) is not None:
+                    return None
+        assert first is not None
+        return f"both sides of {parent} are blocked ({first.describe()})"
+
+    def in_front(self, spec: ItemSpec, parent: str) -> str | None:
+        """Put a child in front of its parent, facing it (a wall item: against the wall
+        opposite the parent)."""
+        if spec.rule.is_along_wall:
+            return self._opposite_wall(spec, parent)
+        pspec, ppose, pbox = self._parent(parent)
+        rule = spec.rule
+        f = np.array(front_vector(ppose.rotation))
+        rotation = (ppose.rotation + 2) % 4
+        axis = 0 if abs(f[0]) > 0.5 else 1  # the axis the gap is measured along
+        lateral_axis = 1 - axis
+        minx, minz, maxx, maxz = self.layout.interior.bounds
+        limit = max(maxx - minx, maxz - minz)
+        lo_gap, hi_gap = rule.min_pair_distance, rule.max_gap if rule.max_gap else limit
+        preferred_gap = (lo_gap + hi_gap) / 2 if rule.max_gap else lo_gap
+        _, near, _, _ = self._side_geometry(spec, rotation, pbox, f, lo_gap)
+        _, far, _, _ = self._side_geometry(spec, rotation, pbox, f, hi_gap)
+        _, want, _, _ = self._side_geometry(spec, rotation, pbox, f, preferred_gap)
+        lateral = (ppose.x, ppose.z)[lateral_axis]
+        lo, hi = sorted((near, far))
+        if self._slide(spec, rotation, axis, lateral, lo, hi, want) is not None:
+            return None
+        first = self._conflict(spec, _pose(axis, want, lateral_axis, lateral, rotation))
+        plo, phi = pbox[lateral_axis], pbox[lateral_axis + 2]
+        for along in dict.fromkeys((want, near, far)):
+            pose = self._slide(spec, rotation, lateral_axis, along, plo, phi, lateral)
+            if pose is not None:
+                self._face_child(parent, spec.name, lateral_axis,
+                                 (pose.x, pose.z)[lateral_axis])
+                return None
+        detail = f" ({first.describe()})" if first else ""
+        return f"no free spot in front of {parent}{detail}"
+
+    def _opposite_wall(self, spec: ItemSpec, parent: str) -> str | None:
+        pspec, ppose, pbox = self._parent(parent)
+        f = np.array(front_vector(ppose.rotation))
+        axis = 0 if abs(f[0]) > 0.5 else 1
+        lateral_axis = 1 - axis
+        rotation = (ppose.rotation + 2) % 4
+        plo, phi = pbox[lateral_axis], pbox[lateral_axis + 2]
+        front_line = pbox[axis + 2] if f[axis] > 0 else pbox[axis]
+        facing = []
+        for edge in self.edges:
+            if edge.axis != lateral_axis or np.dot(edge.normal, f) > -0.5:
+                continue
+            elo, ehi = edge.span
+            ahead = (edge.line - front_line) * f[axis]
+            if ahead > 0 and min(ehi, phi) > max(elo, plo):
+                facing.append((ahead, edge))
+        if not facing:
+            return f"no wall opposite {parent}"
+        lateral = (ppose.x, ppose.z)[lateral_axis]
+        first: Conflict | None = None
+        for ahead, edge in sorted(facing, key=lambda item: item[0]):
+            parts = spec.parts(rotation)
+            bbox = _bbox([p.box for p in parts])
+            body = parts[0].box
+            _, fixed = _flush(bbox, edge.normal, edge.line)
+            gap = abs(fixed - front_line) - (body[axis + 2] - body[axis]) / 2
+            if gap < spec.rule.min_pair_distance - 1e-9:
+                first = None
+                continue
+            elo, ehi = edge.span
+            lo = max(elo - body[lateral_axis], plo)
+            hi = min(ehi - body[lateral_axis + 2], phi)
+            pose = self._slide(spec, rotation, lateral_axis, fixed, lo, hi, lateral)
+            if pose is not None:
+                self._face_child(parent, spec.name, lateral_axis,
+                                 (pose.x, pose.z)[lateral_axis])
+                return None
+            if first is None:
+                centre = min(max(lateral, lo), hi)
+                first = self._conflict(spec, _pose(lateral_axis, centre, axis, fixed, rotation))
+        detail = f" ({first.describe()})" if first else ""
+        return f"the wall opposite {parent} has no room for {spec.name}{detail}"
+
+    def _face_child(self, parent: str, child: str, axis: int, value: float) -> None:
+        """Shift ``parent`` sideways to line up with ``child`` if it has no other children
+        placed, is not a corner item and nothing blocks the new position."""
+        pspec, ppose = self.layout.placed[parent]
+        if pspec.rule.is_in_corner or abs((ppose.x, ppose.z)[axis] - value) < 1e-9:
+            return
+        others = [n for n in self.related.get(parent, frozenset())
+                  if n != child and n != pspec.rule.pair_with and n in self.layout.placed]
+        if others:
+            return
+        self.layout.remove(parent)
+        if self._try(pspec, ppose.moved(axis, value)) is not None:
+            self.layout.add(pspec, ppose)
+
+
+def _half(spec: ItemSpec, rotation: int, axis: int) -> float:
+    body = spec.parts(rotation)[0].box
+    return (body[axis + 2] - body[axis]) / 2
+
+
+def _pose(axis_a: int, value_a: float, axis_b: int, value_b: float, rotation: int) -> Pose:
+    coords = [0.0, 0.0]
+    coords[axis_a], coords[axis_b] = value_a, value_b
+    return Pose(coords[0], coords[1], rotation)
