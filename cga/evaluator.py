@@ -43,7 +43,7 @@ from shapely.geometry import Polygon
 from . import ast
 from .binding import bind_arguments
 from .errors import DerivationError, SourceError, Span
-from .expressions import Namespace, Value, describe, evaluate, shape_attributes
+from .expressions import UNKNOWN, Namespace, Value, describe, evaluate, shape_attributes
 from .lot import DEFAULT_LOT, lot_from_call, rectangle
 from .model import Diagnostic
 from .randomness import shape_rng, variable_rng
@@ -59,6 +59,7 @@ __all__ = [
     "Evaluator",
     "derive",
     "start_symbol",
+    "index_rules",
     "evaluate_units",
     "evaluate_variables",
     "choose_sequence",
@@ -160,13 +161,33 @@ def evaluate_variables(grammar: ast.Grammar, seed: int | None) -> dict[str, Valu
     return values
 
 
+def index_rules(grammar: ast.Grammar) -> dict[str, ast.Rule]:
+    """Rules by predecessor name.
+
+    Raises
+    ------
+    DerivationError
+        Two rules share a predecessor.
+    """
+    rules: dict[str, ast.Rule] = {}
+    for rule in grammar.rules:
+        name = rule.predecessor.name
+        if name in rules:
+            raise DerivationError(f"a second rule for {name} (the first is at line "
+                                  f"{rules[name].span.line})", rule.predecessor.span,
+                                  hint="merge them into one rule with `|` alternatives")
+        rules[name] = rule
+    return rules
+
+
 def check_percentages(choice: ast.Stochastic, ns: Namespace) -> list[tuple[float, ast.Branch]]:
     """The stochastic branches with their percentages, checked.
 
     Returns
     -------
     list
-        ``(percent, branch)`` pairs in order; ``else`` gets the remainder to 100.
+        ``(percent, branch)`` pairs in order; ``else`` gets the remainder to 100. Empty
+        when a percentage is :data:`~cga.expressions.UNKNOWN` (static checks only).
 
     Raises
     ------
@@ -182,6 +203,8 @@ def check_percentages(choice: ast.Stochastic, ns: Namespace) -> list[tuple[float
             else_branch = branch
             continue
         value = evaluate(branch.guard, ns)
+        if value is UNKNOWN:  # static check of a percentage that depends on the shape
+            return []
         if isinstance(value, bool) or not isinstance(value, float) or not 0 <= value <= 100:
             raise DerivationError(f"a stochastic branch needs a percentage between 0 and 100, "
                                   f"got {describe(value)}", branch.guard.span)
@@ -305,15 +328,7 @@ class Evaluator:
         self.max_depth = max_depth
         self.base_dir = Path(base_dir) if base_dir is not None else Path(grammar.file).parent
         self.strict = strict
-        self.rules: dict[str, ast.Rule] = {}
-        for rule in grammar.rules:
-            name = rule.predecessor.name
-            if name in self.rules:
-                first = self.rules[name].span
-                raise DerivationError(f"a second rule for {name} (the first is at line "
-                                      f"{first.line})", rule.predecessor.span,
-                                      hint="merge them into one rule with `|` alternatives")
-            self.rules[name] = rule
+        self.rules = index_rules(grammar)
 
     # -- public -----------------------------------------------------------------------
 
@@ -413,7 +428,7 @@ class Evaluator:
             rng=rng, units=self.units,
             resolve=lambda path, kind="rules": resolve_resource(path, kind, base_dir=self.base_dir),
             report=diagnostics.append, span=call.span, successor_count=len(successors),
-            cache=cache, seed=self.seed, strict=self.strict)
+            cache=cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir)
         started = time.perf_counter()
         try:
             children = operation.apply(shape, args, ctx)

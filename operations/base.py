@@ -20,6 +20,7 @@ Parameter kinds (``Param.kind``):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, ClassVar
 
 import numpy as np
@@ -87,7 +88,8 @@ class OperationContext:
     ``seed`` is the build seed, for operations that want the same draw on every shape
     (``make_floor(..., same_layout=true)``). ``strict`` is the build's strict mode: an
     operation that would repair a problem and report it (e.g. add a door so every room
-    is reachable) fails instead.
+    is reachable) fails instead. ``base_dir`` is the grammar's folder (None when the
+    grammar has no file), where a grammar keeps its own furniture models.
     """
 
     rng: np.random.Generator
@@ -99,6 +101,7 @@ class OperationContext:
     cache: dict[str, Any] = field(default_factory=dict)
     seed: int = 0
     strict: bool = False
+    base_dir: Path | None = None
 
 
 class Operation:
