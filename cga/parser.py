@@ -18,6 +18,7 @@ source attached, phrased in words ("expected `-->` after the rule name `Lot`",
 
 from __future__ import annotations
 
+import bisect
 import math
 import re
 from dataclasses import dataclass
@@ -154,7 +155,7 @@ class _Locator:
         return self._line_starts[line - 1] + column - 1
 
     def at_offset(self, offset: int, length: int = 1) -> Span:
-        line = _bisect_right(self._line_starts, offset)
+        line = bisect.bisect_right(self._line_starts, offset)
         column = offset - self._line_starts[line - 1] + 1
         return Span(self.file, line, column, max(1, length))
 
@@ -179,17 +180,6 @@ class _Locator:
         start = self.offset(line, column)
         end = self.text.find("\n", start)
         return (len(self.text) if end < 0 else end) - start
-
-
-def _bisect_right(values: list[int], x: int) -> int:
-    lo, hi = 0, len(values)
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if x < values[mid]:
-            hi = mid
-        else:
-            lo = mid + 1
-    return lo
 
 
 # ---------------------------------------------------------------------------------
@@ -360,6 +350,8 @@ class _ToAst(Transformer):
         while index < len(items):
             op = items[index]
             if not isinstance(op, ast.OpCall):
+                # a group that does not follow an operation call: the item before it is
+                # the previous call's successor group
                 self._extra_successor(items[index - 1], op)
             index += 1
             following = items[index] if index < len(items) else None
@@ -383,7 +375,7 @@ class _ToAst(Transformer):
                     hint="write `op(args) Successor`; only a plain rename `A --> B` has no "
                          "operation")
 
-    def _extra_successor(self, before: ast.Step | _SuccessorGroup | _SplitGroup,
+    def _extra_successor(self, before: _SuccessorGroup | _SplitGroup,
                          group: _SuccessorGroup | _SplitGroup) -> NoReturn:
         if isinstance(group, _SplitGroup):
             self._error("sized parts must directly follow an operation call", group.span)
@@ -474,9 +466,7 @@ class _ToAst(Transformer):
         return _assemble(children, self.file, self.loc)
 
 
-def _describe_group(group: _SuccessorGroup | _SplitGroup | ast.OpCall) -> str:
-    if isinstance(group, ast.OpCall):
-        return f"`{group.name}(...)`"
+def _describe_group(group: _SuccessorGroup | _SplitGroup) -> str:
     if isinstance(group, _SplitGroup):
         return "the sized parts `{...}`"
     names = ", ".join(s.name for s in group.symbols)

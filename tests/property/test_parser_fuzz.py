@@ -93,9 +93,9 @@ def mutate(edits) -> str:
     pieces = [(m.group(), SEED_GRAMMAR[m.end():next_start])
               for m, next_start in _with_next_starts(TOKEN.finditer(SEED_GRAMMAR))]
     for edit in edits:
-        kind, index = edit[0], min(edit[1], len(pieces) - 1) if pieces else 0
         if not pieces:
             break
+        kind, index = edit[0], min(edit[1], len(pieces) - 1)
         if kind == "delete":
             del pieces[index]
         elif kind == "insert":

@@ -80,8 +80,9 @@ def test_figure_6_5_type_rooms_path_and_brace_successor():
     step = only_step(rules["Floor1"])
     assert step.op.name == "type_rooms"
     (path,) = step.op.args
-    assert path.value.value == ("D:\\\\RoomsProjekt\\\\pcgofrooms\\\\src\\\\main\\\\java\\\\projects"
-                                "\\\\cgashape\\\\room_creation\\\\processor\\\\TestConfig")
+    written = r"D:\\RoomsProjekt\\pcgofrooms\\src\\main\\java\\projects\\cgashape" \
+        r"\\room_creation\\processor\\TestConfig"
+    assert path.value.value == written  # both backslashes of each pair are kept
     assert [s.name for s in step.successors] == ["FloorTyped1"]
     assert rules["Floor1"].span.line == 26
 
