@@ -1,0 +1,45 @@
+"""OBJ: one group per node in the world frame, materials with colours."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+import trimesh
+
+from cga.export.obj import export_obj
+from cga.export.palette import KIND_COLORS
+
+
+@pytest.fixture(scope="module")
+def obj_files(small_scene, tmp_path_factory):
+    scene, nodes = small_scene
+    out = tmp_path_factory.mktemp("obj")
+    return export_obj(scene, nodes, out, "house")
+
+
+def test_groups_are_the_nodes(obj_files, small_scene):
+    _, nodes = small_scene
+    obj, mtl = obj_files
+    text = obj.read_text()
+    assert text.splitlines()[1] == f"mtllib {mtl.name}"
+    assert re.findall(r"^g (\S+)$", text, re.MULTILINE) == [n.path for n in nodes]
+    assert len(re.findall(r"^v ", text, re.MULTILINE)) == sum(len(n.mesh.vertices) for n in nodes)
+
+
+def test_trimesh_reads_back_the_world_geometry(obj_files, small_scene):
+    _, nodes = small_scene
+    obj, _ = obj_files
+    loaded = trimesh.load(obj, force="mesh", process=False)
+    assert len(loaded.faces) == sum(len(n.mesh.faces) for n in nodes)
+    world = np.array([n.mesh.bounds for n in nodes])
+    assert np.allclose(loaded.bounds, [world[:, 0].min(axis=0), world[:, 1].max(axis=0)])
+    assert loaded.bounds[1][1] == pytest.approx(6.0)  # y up: two 3 m storeys
+
+
+def test_materials_carry_kind_colours(obj_files):
+    _, mtl = obj_files
+    blocks = dict(re.findall(r"newmtl (\S+)\n(?:.*\n)*?Kd ([\d. ]+)\n", mtl.read_text()))
+    assert set(blocks) == {"wall", "slab", "furniture"}
+    assert [float(v) for v in blocks["wall"].split()] == pytest.approx(KIND_COLORS["wall"], abs=1e-4)

@@ -1,0 +1,155 @@
+"""URDF and SDF: pybullet loads them, one body per item plus the building, each where
+the scene puts it (checked against the node meshes, converted by hand here)."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pybullet
+import pytest
+from pybullet_utils.bullet_client import BulletClient
+
+from cga.errors import ExportError
+from cga.export.sdf import export_sdf
+from cga.export.urdf import export_urdf
+
+
+def _ros_box(mesh):
+    """World AABB → ROS AABB: (x, y, z)_ros = (x, −z, y)_world."""
+    (x0, y0, z0), (x1, y1, z1) = mesh.bounds
+    return np.array([[x0, -z1, y0], [x1, -z0, y1]])
+
+
+@pytest.fixture(scope="module")
+def outputs(small_scene, tmp_path_factory):
+    scene, nodes = small_scene
+    out = tmp_path_factory.mktemp("robot")
+    export_urdf(scene, nodes, out, "house")
+    export_sdf(scene, nodes, out, "house")
+    return out
+
+
+@pytest.fixture()
+def client():
+    bullet = BulletClient(connection_mode=pybullet.DIRECT)
+    bullet.setGravity(0, 0, -9.81)
+    yield bullet
+    bullet.disconnect()
+
+
+def _furniture(nodes):
+    return [n for n in nodes if n.kind == "furniture"]
+
+
+def _load_urdfs(client, out):
+    index = json.loads((out / "house.urdf.json").read_text())
+    bodies = {}
+    for entry in index["bodies"]:
+        body = client.loadURDF(str(out / entry["urdf"]), entry["base_position"],
+                               entry["base_orientation_xyzw"], useFixedBase=entry["fixed"])
+        bodies[entry["node"]] = body
+    return bodies
+
+
+def _check_in_place(client, bodies, nodes):
+    for node in _furniture(nodes):
+        lo, hi = (np.array(v) for v in client.getAABB(bodies[node.path]))
+        assert np.allclose([lo, hi], _ros_box(node.mesh), atol=0.01), node.path
+    lo, hi = (np.array(v) for v in client.getAABB(bodies[None]))
+    structure = np.array([_ros_box(n.mesh) for n in nodes if n.kind != "furniture"])
+    assert np.allclose(lo, structure[:, 0].min(axis=0), atol=0.01)
+    assert np.allclose(hi, structure[:, 1].max(axis=0), atol=0.01)
+
+
+def test_urdfs_load_with_one_body_per_item_plus_building(client, outputs, small_scene):
+    _, nodes = small_scene
+    bodies = _load_urdfs(client, outputs)
+    assert client.getNumBodies() == len(_furniture(nodes)) + 1
+    _check_in_place(client, bodies, nodes)
+    for node in _furniture(nodes):
+        mass = client.getDynamicsInfo(bodies[node.path], -1)[0]
+        assert mass == pytest.approx(0.0 if node.static else node.extras["mass"])
+
+
+def test_sdf_world_loads_with_one_body_per_item_plus_building(client, outputs, small_scene):
+    _, nodes = small_scene
+    cwd = os.getcwd()
+    os.chdir("/")  # mesh URIs resolve against the world file, not the working directory
+    try:
+        ids = client.loadSDF(str(outputs / "house.world.sdf"))
+    finally:
+        os.chdir(cwd)
+    assert len(ids) == len(_furniture(nodes)) + 1
+    names = [client.getBodyInfo(i)[1].decode() for i in ids]
+    assert names[0] == "building"
+    by_node = {None: ids[0]}
+    for node in _furniture(nodes):
+        name = node.path.replace("/furniture/", "/").replace("/", "_")
+        by_node[node.path] = ids[names.index(name)]
+    _check_in_place(client, by_node, nodes)
+    root = ET.parse(outputs / "house.world.sdf").getroot()
+    assert root.get("version") == "1.6"
+    for model in root.iter("model"):
+        for element in ("link/visual", "link/collision"):
+            assert model.find(element) is not None
+        if model.findtext("static") == "0":
+            assert float(model.findtext("link/inertial/mass")) > 0
+
+
+@pytest.mark.physics
+@pytest.mark.parametrize("loader", ["urdf", "sdf"])
+def test_items_rest_on_the_concave_building(client, outputs, small_scene, loader):
+    # a convex-hull building would throw the ground-floor items out of its hull
+    _, nodes = small_scene
+    if loader == "urdf":
+        bodies = list(_load_urdfs(client, outputs).values())
+    else:
+        bodies = list(client.loadSDF(str(outputs / "house.world.sdf")))
+    before = [client.getBasePositionAndOrientation(b)[0] for b in bodies]
+    for _ in range(120):
+        client.stepSimulation()
+    after = [client.getBasePositionAndOrientation(b)[0] for b in bodies]
+    assert np.abs(np.subtract(after, before)).max() < 0.01
+
+
+def test_item_urdf_has_box_inertia_and_convex_parts(outputs):
+    root = ET.parse(outputs / "urdf" / "house.floor1_room0_Bedroom_bed.urdf").getroot()
+    link = root.find("link")
+    mass = float(link.find("inertial/mass").get("value"))
+    inertia = link.find("inertial/inertia")
+    # bed 1.6 (width, link x) × 2.0 (depth, link y) × 0.5 (height, link z)
+    assert float(inertia.get("ixx")) == pytest.approx(mass * (2.0**2 + 0.5**2) / 12, rel=1e-5)
+    assert float(inertia.get("iyy")) == pytest.approx(mass * (1.6**2 + 0.5**2) / 12, rel=1e-5)
+    assert float(inertia.get("izz")) == pytest.approx(mass * (1.6**2 + 2.0**2) / 12, rel=1e-5)
+    collisions = link.findall("collision")
+    assert len(collisions) == 1 and collisions[0].get("concave") is None
+    building = ET.parse(outputs / "urdf" / "house.building.urdf").getroot()
+    assert building.find("link/collision").get("concave") == "yes"
+    assert building.find("gazebo/static").text == "true"
+
+
+@pytest.mark.parametrize("loader", ["urdf", "sdf"])
+def test_known_position_lands_at_ros_coordinates(client, outputs, loader):
+    # the bed stands at world x = 2, z = 3 on floor 1 (walking surface y = 3.2, 0.5 m
+    # high, one quarter turn): ROS (2, −3, 3.45), yaw 90°
+    if loader == "urdf":
+        bed = _load_urdfs(client, outputs)["floor1/room0_Bedroom/furniture/bed"]
+    else:
+        ids = client.loadSDF(str(outputs / "house.world.sdf"))
+        bed = next(i for i in ids if client.getBodyInfo(i)[1] == b"floor1_room0_Bedroom_bed")
+    position, orientation = client.getBasePositionAndOrientation(bed)
+    assert position == pytest.approx((2.0, -3.0, 3.45), abs=1e-6)
+    assert client.getEulerFromQuaternion(orientation)[2] == pytest.approx(math.pi / 2)
+
+
+def test_movable_item_without_mass_is_an_export_error(small_scene, tmp_path):
+    scene, nodes = small_scene
+    sofa = next(n for n in nodes if n.path.endswith("/sofa"))
+    stripped = [n if n is not sofa else type(n)(n.path, n.kind, n.mesh, {}, False, n.parts)
+                for n in nodes]
+    with pytest.raises(ExportError, match="sofa.*mass"):
+        export_urdf(scene, stripped, tmp_path, "house")

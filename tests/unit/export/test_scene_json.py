@@ -1,0 +1,129 @@
+"""The scene document: schema-valid, deterministic, faithful to the model."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import jsonschema
+import pytest
+
+import cga
+from cga.errors import ExportError
+from cga.export.scene_json import export_scene_json, load_schema, scene_json_text
+
+
+@pytest.fixture(scope="module")
+def document(small_scene):
+    scene, nodes = small_scene
+    return json.loads(scene_json_text(scene, nodes))
+
+
+def test_schema_is_valid_draft_2020_12():
+    schema = load_schema()
+    assert schema["$schema"] == "https://json-schema.org/draft/2020-12/schema"
+    jsonschema.Draft202012Validator.check_schema(schema)
+
+
+def _properties(schema, where="#"):
+    """Every (where, name, subschema) of a 'properties' block, recursively."""
+    for name, sub in schema.get("properties", {}).items():
+        yield where, name, sub
+        yield from _properties(sub, f"{where}/{name}")
+    for key in ("items", "additionalProperties"):
+        if isinstance(schema.get(key), dict):
+            yield from _properties(schema[key], f"{where}/{key}")
+    for name, sub in schema.get("$defs", {}).items():
+        yield from _properties(sub, f"{where}/$defs/{name}")
+
+
+def test_every_property_is_described():
+    missing = [f"{where}/{name}" for where, name, sub in _properties(load_schema())
+               if not sub.get("description")]
+    assert missing == []
+
+
+def test_document_validates(document):
+    jsonschema.Draft202012Validator(load_schema()).validate(document)
+
+
+def test_schema_rejects_a_broken_document(document):
+    broken = json.loads(json.dumps(document))
+    broken["furniture"][0]["pose"]["quarter_turns"] = 5
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate(broken, load_schema())
+
+
+def test_same_scene_same_text_except_timings(small_scene, tmp_path):
+    scene, nodes = small_scene
+    first = export_scene_json(scene, nodes, tmp_path, "house")[0].read_text()
+    slower = dataclasses.replace(scene, timings={"derive": 9.5, "export": 1.0})
+    second = scene_json_text(slower, nodes)
+    assert first != second
+    a, b = json.loads(first), json.loads(second)
+    a.pop("timings"), b.pop("timings")
+    assert a == b
+    assert scene_json_text(scene, nodes) == first
+
+
+def test_keys_sorted_and_floats_rounded(document, small_scene):
+    scene, nodes = small_scene
+    text = scene_json_text(scene, nodes)
+    assert list(document) == sorted(document)
+    assert list(document["furniture"][0]) == sorted(document["furniture"][0])
+
+    def floats(value):
+        if isinstance(value, float):
+            yield value
+        elif isinstance(value, dict):
+            for v in value.values():
+                yield from floats(v)
+        elif isinstance(value, list):
+            for v in value:
+                yield from floats(v)
+
+    assert all(round(f, 6) == f for f in floats(document))
+    assert '"position": [5.0, 1.5]' in text  # points stay on one line
+
+
+def test_header(document):
+    assert document["format"] == "cga.scene"
+    assert document["generator"] == {"name": "cga", "version": cga.__version__}
+    assert document["seed"] == 7
+    assert document["frame"]["up"] == "+y"
+
+
+def test_contents_follow_the_model(document):
+    assert [f["index"] for f in document["floors"]] == [0, 1]
+    assert len(document["rooms"]) == 6
+    kitchen = next(r for r in document["rooms"] if r["type"] == "Kitchen")
+    assert kitchen["area"] == 9.0 and kitchen["floor"] == 0
+    assert kitchen["polygon"]["exterior"][0] in ([5.0, 0.0], [8.0, 0.0], [8.0, 3.0], [5.0, 3.0])
+    assert kitchen["floor_area"] < kitchen["area"]
+    fronts = [d for d in document["doors"] if d["front"]]
+    assert len(fronts) == 1 and fronts[0]["floor"] == 0 and -1 in fronts[0]["rooms"]
+    wall7 = next(w for w in document["walls"] if w["floor"] == 0 and w["id"] == 7)
+    assert wall7["outer"] is False
+    assert wall7["openings"] == [{"kind": "door", "center": 1.5, "width": 0.9, "height": 2.1,
+                                  "sill": 0.0, "position": [5.0, 1.5]}]
+    assert len(document["windows"]) == 6
+    edges = [(e["floor"], e["rooms"], e["doors"]) for e in document["room_graph"]]
+    assert (0, [-1, 0], [2]) in edges and (1, [1, 2], [1]) in edges
+    assert len(document["nodes"]) > 10
+
+
+def test_furniture_pose_and_box(document):
+    bed = next(f for f in document["furniture"] if f["name"] == "bed")
+    assert bed["floor"] == 1 and bed["room"] == 0
+    assert bed["pose"] == {"position": [2.0, 3.2, 3.0], "yaw_degrees": 90.0, "quarter_turns": 1}
+    # a quarter turn swaps width and depth in the world box
+    assert bed["bbox"] == {"min": [1.0, 3.2, 2.2], "max": [3.0, 3.7, 3.8]}
+    assert bed["node"] == "floor1/room0_Bedroom/furniture/bed"
+    assert bed["front"] == [-1.0, 0.0]
+
+
+def test_nan_in_checks_is_an_export_error(small_scene):
+    scene, nodes = small_scene
+    bad = dataclasses.replace(scene, checks={"physics": {"max_penetration": float("nan")}})
+    with pytest.raises(ExportError, match=r"checks\.physics\.max_penetration"):
+        scene_json_text(bad, nodes)
