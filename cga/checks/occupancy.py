@@ -1,0 +1,292 @@
+"""Occupancy grids: what a wheeled robot bumps into on one floor, in cells.
+
+A ground robot collides with whatever stands between its wheels and its top: walls, and
+furniture that reaches into that height band (a table top at 0.75 m blocks a robot of
+1.2 m, a rug does not). For one floor plan, :func:`occupancy_grid` takes every scene node
+whose solid meets the band (relative to the floor's walking surface), projects the slice
+of the solid inside the band onto the floor (exactly, with manifold3d: clip by two planes,
+then take the shadow), and rasterises the shadows. A wall keeps its door gaps open
+because the slice of the band through a door opening is empty, and a window with its
+sill inside the band stays closed because the wall below the sill is in the band.
+
+Cells and frames: the array follows the ROS map convention (``map_server``): row 0 is the
+top of the image, i.e. the largest ROS ``y``; ROS ``(x, y)`` is world ``(x, −z)``
+(DESIGN §3), so rows run along world ``+z`` and columns along ``+x``. ``origin`` is the ROS
+position of the lower-left corner of the lower-left cell, as in a map YAML file. Shadows
+are drawn with their outlines, so a cell an obstacle crosses is occupied and thin parts
+never vanish; positions are accurate to one cell.
+
+Static furniture (rugs, door and window details) is not an obstacle: rugs are walked
+over and a door leaf stands in a gap a robot drives through.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import manifold3d
+import numpy as np
+import shapely
+from PIL import Image, ImageDraw
+from shapely.geometry import Polygon
+from shapely.geometry.base import BaseGeometry
+
+from cga.model import FloorPlan
+from cga.scene import SceneNode
+
+from ._solids import as_manifold
+
+__all__ = [
+    "Obstacle",
+    "OccupancyGrid",
+    "band_footprint",
+    "occupancy_grid",
+    "obstacle_nodes",
+]
+
+_TO_PLAN = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, -1.0, 0.0, 0.0]])
+"""World (x, y, z) → (x, z, −y): a proper rotation whose xy plane is the plan (x, z), so a
+manifold3d projection along its z axis is the view from above."""
+
+
+@dataclass(frozen=True)
+class Obstacle:
+    """One scene node's shadow in the band: ``footprint`` in plan ``(x, z)`` metres."""
+
+    path: str
+    kind: str
+    footprint: BaseGeometry
+    extras: dict
+
+
+@dataclass(frozen=True)
+class OccupancyGrid:
+    """A floor's occupancy in cells of ``resolution`` metres (ROS map convention).
+
+    Attributes
+    ----------
+    occupied
+        ``bool[rows, cols]``: a cell an obstacle's shadow covers or crosses.
+    free_mask
+        ``bool[rows, cols]``: a cell inside the floor's footprint (the building); a
+        ROS map shows the other cells as unknown.
+    origin
+        ROS ``(x, y)`` of the lower-left corner of the lower-left cell (row ``rows−1``,
+        column 0), as in a map YAML ``origin``.
+    resolution
+        Cell size (m).
+    floor
+        Index of the floor plan.
+    band
+        World heights ``(y0, y1)`` of the robot's band on this floor.
+    obstacles
+        The nodes drawn, each with its band shadow.
+    """
+
+    occupied: np.ndarray
+    free_mask: np.ndarray
+    origin: tuple[float, float]
+    resolution: float
+    floor: int
+    band: tuple[float, float]
+    obstacles: tuple[Obstacle, ...] = ()
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (int(self.occupied.shape[0]), int(self.occupied.shape[1]))
+
+    @property
+    def x_min(self) -> float:
+        """World x of the grid's left edge."""
+        return self.origin[0]
+
+    @property
+    def z_min(self) -> float:
+        """World z of the grid's top edge (row 0): ROS ``y`` grows downwards in z."""
+        return -(self.origin[1] + self.shape[0] * self.resolution)
+
+    def world_to_cell(self, x: float, z: float) -> tuple[int, int]:
+        """``(row, col)`` of the cell holding world point ``(x, z)``; it may lie outside
+        the grid (see :meth:`in_bounds`)."""
+        return (math.floor((z - self.z_min) / self.resolution),
+                math.floor((x - self.x_min) / self.resolution))
+
+    def cell_to_world(self, row: float, col: float) -> tuple[float, float]:
+        """World ``(x, z)`` of the centre of cell ``(row, col)``."""
+        return (self.x_min + (col + 0.5) * self.resolution,
+                self.z_min + (row + 0.5) * self.resolution)
+
+    def in_bounds(self, row: int, col: int) -> bool:
+        return 0 <= row < self.shape[0] and 0 <= col < self.shape[1]
+
+    def rasterise(self, geometry: BaseGeometry) -> np.ndarray:
+        """``bool[rows, cols]`` of the cells a plan-space ``(x, z)`` geometry covers or
+        crosses (outline included, like the obstacles)."""
+        mask = np.zeros(self.shape, dtype=bool)
+        _paint(mask, geometry, self.x_min, self.z_min, self.resolution)
+        return mask
+
+    def occupied_by(self, paths: Iterable[str]) -> np.ndarray:
+        """The cells occupied by the obstacles with these node paths only."""
+        wanted = set(paths)
+        mask = np.zeros(self.shape, dtype=bool)
+        for obstacle in self.obstacles:
+            if obstacle.path in wanted:
+                _paint(mask, obstacle.footprint, self.x_min, self.z_min, self.resolution)
+        return mask
+
+
+def obstacle_nodes(nodes: Sequence[SceneNode]) -> list[SceneNode]:
+    """Nodes that can block a robot: the structure and the solid (dynamic) furniture."""
+    return [n for n in nodes if not (n.kind == "furniture" and n.static)]
+
+
+def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
+    """The shadow, in plan ``(x, z)``, of the part of ``node`` between heights ``y0`` and
+    ``y1`` (an empty geometry when none of it is).
+
+    A furniture node with convex parts is the union of its parts; other meshes are used
+    whole. A mesh that is not a watertight solid is replaced by its convex hull, which
+    over-approximates it.
+    """
+    lo, hi = node.mesh.bounds
+    if hi[1] <= y0 or lo[1] >= y1:
+        return Polygon()
+    pieces = [m for m in (node.parts or (node.mesh,)) if len(m.faces)]
+    solids = []
+    for mesh in pieces:
+        solid = as_manifold(mesh)
+        if solid is None:
+            solid = as_manifold(mesh.convex_hull)
+        if solid is not None:
+            solids.append(solid)
+    if not solids:
+        return Polygon()
+    solid = solids[0] if len(solids) == 1 else manifold3d.Manifold.batch_boolean(
+        solids, manifold3d.OpType.Add)
+    band = (solid.transform(_TO_PLAN)
+            .trim_by_plane((0.0, 0.0, 1.0), -y1)
+            .trim_by_plane((0.0, 0.0, -1.0), y0))
+    if band.is_empty():
+        return Polygon()
+    rings = [Polygon(r) for r in band.project().to_polygons() if len(r) >= 3]
+    rings = [r for r in rings if r.is_valid and r.area > 0]
+    if not rings:
+        return Polygon()
+    return shapely.symmetric_difference_all(rings)
+
+
+def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: float = 0.05,
+                   band: tuple[float, float] = (0.05, 1.2), margin: float = 0.5,
+                   include_furniture: bool = True) -> OccupancyGrid:
+    """Rasterise one floor's obstacles in the robot's height band.
+
+    Parameters
+    ----------
+    plan
+        The floor plan; its footprint sets the grid's extent and ``free_mask``, its
+        walking surface (``floor_y``) the base of the band.
+    nodes
+        The scene's nodes (world space); those outside the band are skipped, so the
+        whole scene can be passed for every floor.
+    resolution
+        Cell size (m).
+    band
+        Heights above the walking surface (m) between which an obstacle blocks the robot.
+    margin
+        Free border (m) around the footprint, so the outside of a front door is on the map.
+    include_furniture
+        False draws the structure only (what the building itself allows).
+
+    Returns
+    -------
+    OccupancyGrid
+
+    Raises
+    ------
+    ValueError
+        ``resolution`` or ``margin`` is not positive, or the band is empty.
+
+    Notes
+    -----
+    One exact clip-and-project per node (manifold3d) and one polygon fill per shadow;
+    about 10–30 ms for a furnished floor at 5 cm.
+    """
+    if not resolution > 0:
+        raise ValueError(f"occupancy_grid: resolution must be positive, got {resolution!r}")
+    if not margin >= 0:
+        raise ValueError(f"occupancy_grid: margin must not be negative, got {margin!r}")
+    if not band[1] > band[0]:
+        raise ValueError(f"occupancy_grid: band {band} must be (low, high) with low < high")
+    y0, y1 = plan.floor_y + band[0], plan.floor_y + band[1]
+    minx, minz, maxx, maxz = plan.footprint.bounds
+    x_min, z_min = minx - margin, minz - margin
+    cols = max(1, math.ceil((maxx + margin - x_min) / resolution - 1e-9))
+    rows = max(1, math.ceil((maxz + margin - z_min) / resolution - 1e-9))
+    origin = (x_min, -(z_min + rows * resolution))
+    occupied = np.zeros((rows, cols), dtype=bool)
+    free_mask = np.zeros((rows, cols), dtype=bool)
+    _paint(free_mask, plan.footprint, x_min, z_min, resolution)
+    extent = shapely.box(x_min, z_min, x_min + cols * resolution, z_min + rows * resolution)
+    obstacles = []
+    for node in obstacle_nodes(nodes):
+        if node.kind == "furniture" and not include_furniture:
+            continue
+        if not _meets(node, y0, y1, extent):
+            continue
+        footprint = band_footprint(node, y0, y1)
+        if footprint.is_empty:
+            continue
+        obstacles.append(Obstacle(node.path, node.kind, footprint, dict(node.extras)))
+        _paint(occupied, footprint, x_min, z_min, resolution)
+    return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
+                         resolution=resolution, floor=plan.index, band=(y0, y1),
+                         obstacles=tuple(obstacles))
+
+
+def _meets(node: SceneNode, y0: float, y1: float, extent: BaseGeometry) -> bool:
+    """Whether the node's bounding box meets the band and the grid's extent."""
+    if len(node.mesh.faces) == 0:
+        return False
+    lo, hi = node.mesh.bounds
+    if hi[1] <= y0 or lo[1] >= y1:
+        return False
+    return bool(extent.intersects(shapely.box(lo[0], lo[2], hi[0], hi[2])))
+
+
+def _paint(mask: np.ndarray, geometry: BaseGeometry, x_min: float, z_min: float,
+           resolution: float) -> None:
+    """Set the cells of ``mask`` that ``geometry`` (plan x, z) covers or crosses."""
+    rows, cols = mask.shape
+    for polygon in _polygons(geometry):
+        bx0, bz0, bx1, bz1 = polygon.bounds
+        c0 = max(math.floor((bx0 - x_min) / resolution), 0)
+        r0 = max(math.floor((bz0 - z_min) / resolution), 0)
+        c1 = min(math.floor((bx1 - x_min) / resolution) + 1, cols)
+        r1 = min(math.floor((bz1 - z_min) / resolution) + 1, rows)
+        if c0 >= c1 or r0 >= r1:
+            continue
+        image = Image.new("1", (c1 - c0, r1 - r0), 0)
+        draw = ImageDraw.Draw(image)
+
+        def pixels(ring: Sequence[Sequence[float]]) -> list[tuple[int, int]]:
+            xy = np.asarray(ring, dtype=float)[:, :2]
+            u = np.floor((xy[:, 0] - x_min) / resolution).astype(int) - c0
+            v = np.floor((xy[:, 1] - z_min) / resolution).astype(int) - r0
+            return list(zip(u.tolist(), v.tolist()))
+
+        draw.polygon(pixels(polygon.exterior.coords), fill=1, outline=1)
+        for interior in polygon.interiors:
+            draw.polygon(pixels(interior.coords), fill=0, outline=1)
+        mask[r0:r1, c0:c1] |= np.asarray(image, dtype=bool)
+
+
+def _polygons(geometry: BaseGeometry) -> list[Polygon]:
+    """The polygons of any (multi)polygon or collection; other geometry types are skipped."""
+    if geometry.is_empty:
+        return []
+    if isinstance(geometry, Polygon):
+        return [geometry]
+    return [g for part in getattr(geometry, "geoms", ()) for g in _polygons(part)]
