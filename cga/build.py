@@ -1,0 +1,219 @@
+"""The build pipeline: grammar file → Scene → checks → files (DESIGN §10, STYLE "data flows
+one way").
+
+``parse → derive → Scene → scene nodes (meshes) → checks → exporters``. Every stage is
+timed into ``scene.timings`` (``parse``, ``derive`` and, inside it, each operation by
+name, ``meshing``, ``physics``, ``navigability``, ``export``). Checks run only for
+scenes with floors and are imported only then, as are the exporters, so a massing build
+never loads pybullet. All files of a build are staged and moved into the output folder
+only when every exporter has succeeded (:func:`cga.fsutil.atomic_output_dir`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import time
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+from shapely.geometry import Polygon
+
+from .errors import NoSolutionError, ResourceNotFoundError, SourceError, UsageError
+from .evaluator import DEFAULT_MAX_DEPTH, Evaluator
+from .scene import Scene, SceneNode
+
+__all__ = ["STAGES", "build", "default_out_dir", "run_checks", "export_scene"]
+
+STAGES = ("parse", "derive", "meshing", "physics", "navigability", "export")
+"""Pipeline stages as they appear in ``Scene.timings`` (operation timings are the other keys)."""
+
+
+def default_out_dir(name: str) -> Path:
+    """``out/<name>`` in the working directory (DESIGN §10)."""
+    return Path("out") / name
+
+
+class _Progress:
+    """Times stages into a dict and shows the running stage on a terminal (stderr)."""
+
+    def __init__(self, timings: dict[str, float], quiet: bool):
+        self.timings = timings
+        self.status = None
+        if not quiet:
+            from rich.console import Console
+
+            console = Console(stderr=True)
+            if console.is_terminal:
+                self.status = console.status("building…")
+
+    def __enter__(self) -> "_Progress":
+        if self.status is not None:
+            self.status.start()
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.status is not None:
+            self.status.stop()
+
+    @contextlib.contextmanager
+    def stage(self, name: str, message: str) -> Iterator[None]:
+        if self.status is not None:
+            self.status.update(message)
+        started = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.timings[name] = self.timings.get(name, 0.0) + time.perf_counter() - started
+
+
+def _check_options(seed: int, units: float | None, robot_radius: float, formats: Sequence[str],
+                   max_depth: int) -> None:
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise UsageError(f"--seed must be a whole number ≥ 0, got {seed!r}")
+    if units is not None and not units > 0:
+        raise UsageError(f"--units must be positive (metres per grammar unit), got {units!r}")
+    if not robot_radius > 0:
+        raise UsageError(f"--robot-radius must be positive (metres), got {robot_radius!r}")
+    if max_depth < 1:
+        raise UsageError(f"--max-depth must be at least 1, got {max_depth!r}")
+    if formats:
+        from .export import EXPORTERS
+
+        unknown = [f for f in formats if f not in EXPORTERS]
+        if unknown:
+            raise UsageError(f"unknown export format{'s' * (len(unknown) > 1)} "
+                             f"{', '.join(unknown)}; available: {', '.join(EXPORTERS)}")
+
+
+def run_checks(scene: Scene, nodes: Sequence[SceneNode], *, robot_radius: float = 0.25) -> None:
+    """Run the physics and navigability checks into ``scene.checks`` (floors only).
+
+    Each entry is the check's report as a dict (``passed`` plus details) with its
+    one-line ``summary``; their times go to ``scene.timings``.
+    """
+    _run_checks(scene, nodes, robot_radius, _Progress(scene.timings, quiet=True))
+
+
+def _run_checks(scene: Scene, nodes: Sequence[SceneNode], robot_radius: float,
+                progress: _Progress) -> None:
+    if not scene.floors:
+        return
+    from .checks.navigability import check_navigability
+    from .checks.physics import check_physics
+
+    with progress.stage("physics", "physics check (settling furniture)…"):
+        report = check_physics(scene, nodes)
+    scene.checks["physics"] = {**report.to_dict(), "summary": report.summary()}
+    with progress.stage("navigability", "navigability check…"):
+        reach = check_navigability(scene, nodes, radius=robot_radius)
+    scene.checks["navigability"] = {**reach.to_dict(), "summary": reach.summary()}
+
+
+def export_scene(scene: Scene, nodes: Sequence[SceneNode], out_dir: str | Path,
+                 formats: Sequence[str]) -> list[Path]:
+    """Write ``formats`` into ``out_dir`` all-or-nothing; returns the written files.
+
+    Files named ``<scene name>.*`` left from an earlier build and not rewritten now are
+    removed, so the folder describes this build only.
+    """
+    from .export import EXPORTERS
+    from .fsutil import atomic_output_dir
+
+    target = Path(out_dir)
+    written: list[Path] = []
+    with atomic_output_dir(target, replace_matching=f"{scene.name}.*") as staging:
+        for fmt in dict.fromkeys(formats):
+            written.extend(EXPORTERS[fmt](scene, nodes, staging, scene.name))
+    return [target / path.relative_to(staging) for path in written]
+
+
+def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None = None,
+          units: float | None = None, out_dir: str | Path | None = None,
+          formats: Sequence[str] = ("glb",), physics: bool = True, robot_radius: float = 0.25,
+          strict: bool = False, quiet: bool = False, max_depth: int = DEFAULT_MAX_DEPTH,
+          operations: Any = None) -> Scene:
+    """Build a grammar: derive it, mesh it, check it and write the requested files.
+
+    Parameters
+    ----------
+    grammar_path:
+        The ``.grammar`` file.
+    seed:
+        Build seed (≥ 0); the same seed gives byte-identical files.
+    lot:
+        ``--lot`` text (``"14x10"``, ``"polygon(...)"``, a ``.geojson`` path) or a shapely
+        polygon in metres; default: the grammar's ``Lot:``, else a 14 m × 10 m rectangle.
+    units:
+        Metres per grammar unit; overrides the grammar's ``units``.
+    out_dir:
+        The folder that receives the files; default ``out/<grammar name>``.
+    formats:
+        Export formats (keys of :data:`cga.export.EXPORTERS`); empty writes nothing.
+    physics:
+        Run the physics and navigability checks (scenes with floors only).
+    robot_radius:
+        Robot radius (m) for the navigability check.
+    strict:
+        Operations fail instead of repairing (``OperationContext.strict``), and a
+        failed check fails the build (nothing is written).
+    quiet:
+        Show no progress on the terminal.
+    max_depth:
+        Derivation depth limit (runaway recursion guard).
+    operations:
+        An :class:`~cga.operations.OperationRegistry` with extra operations (copied).
+
+    Returns
+    -------
+    Scene
+        With ``timings`` per stage and operation and ``checks`` when they ran.
+
+    Raises
+    ------
+    CGAError
+        Any user error (syntax, derivation, rule table, missing file, bad option,
+        strict failure); source errors carry the grammar text for their excerpt.
+    """
+    path = Path(grammar_path)
+    if not path.is_file():
+        raise ResourceNotFoundError("grammar", str(grammar_path), [str(path.resolve())])
+    _check_options(seed, units, robot_radius, formats, max_depth)
+    text = path.read_text(encoding="utf-8")
+    timings: dict[str, float] = {}
+    try:
+        with _Progress(timings, quiet) as progress:
+            from .parser import parse
+
+            with progress.stage("parse", f"parsing {path.name}…"):
+                grammar = parse(text, str(path))
+            if isinstance(lot, str):
+                from .lot import parse_lot
+
+                lot = parse_lot(lot)
+            with progress.stage("derive", "deriving the shape tree…"):
+                derivation = Evaluator(grammar, seed=seed, units=units, operations=operations,
+                                       max_depth=max_depth, base_dir=path.parent,
+                                       strict=strict).derive(lot)
+            timings.update(derivation.timings)
+            scene = Scene(name=path.stem, seed=seed, units=derivation.units,
+                          terminals=derivation.terminals, source=path,
+                          diagnostics=list(derivation.diagnostics), timings=timings)
+            from .meshing import scene_nodes
+
+            with progress.stage("meshing", "meshing…"):
+                nodes = scene_nodes(scene)
+            if physics:
+                _run_checks(scene, nodes, robot_radius, progress)
+            failed = [c for c in scene.checks.values() if not c.get("passed", True)]
+            if strict and failed:
+                raise NoSolutionError("strict mode: the build does not pass its checks",
+                                      [c.get("summary", "") for c in failed])
+            if formats:
+                with progress.stage("export", "writing files…"):
+                    export_scene(scene, nodes, out_dir or default_out_dir(scene.name), formats)
+    except SourceError as error:
+        if error.span is not None and error.span.file == str(path):
+            error.with_source(text)
+        raise
+    return scene

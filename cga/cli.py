@@ -1,0 +1,139 @@
+"""The ``cga`` command line: ``cga build`` and ``cga check``.
+
+Every user error is a :class:`~cga.errors.CGAError`: its message (file:line:column, the
+line and a caret for grammar errors) goes to stderr and the exit status is 2, with no
+traceback. Exit status 0 means success. Startup stays fast: trimesh, shapely-heavy
+modules and pybullet are imported by the commands that need them, not here.
+
+Each subcommand is a pair (``add_arguments``, ``run``) in :data:`COMMANDS`; adding a
+command is one more entry.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Callable, Sequence
+
+from . import __version__
+from .errors import CGAError
+
+__all__ = ["COMMANDS", "main"]
+
+
+def _formats(text: str) -> list[str]:
+    return [part.strip().lower() for part in text.split(",") if part.strip()]
+
+
+def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
+    parser.add_argument("--seed", type=int, default=0, metavar="N",
+                        help="random seed; the same seed gives byte-identical files (default 0)")
+    parser.add_argument("--lot", metavar="LOT",
+                        help='footprint in metres: 14x10, "polygon((0,0),(14,0),...)" or a '
+                             ".geojson file (default: the grammar's Lot:, else 14x10)")
+    parser.add_argument("--out", metavar="DIR",
+                        help="output folder (default out/<grammar name>)")
+    parser.add_argument("--units", type=float, metavar="U",
+                        help="metres per grammar unit (overrides the grammar's units)")
+    parser.add_argument("--no-physics", action="store_true",
+                        help="skip the physics and navigability checks")
+    parser.add_argument("--strict", action="store_true",
+                        help="fail instead of repairing (e.g. extra doors) and when a check fails")
+    parser.add_argument("--robot-radius", type=float, default=0.25, metavar="R",
+                        help="robot radius in metres for the navigability check (default 0.25)")
+    parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
+                        help="extra outputs, comma separated: obj,urdf,sdf,map")
+    parser.add_argument("--max-depth", type=int, default=64, metavar="N",
+                        help="derivation depth limit (default 64)")
+    output = parser.add_mutually_exclusive_group()
+    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    output.add_argument("--json", action="store_true",
+                        help="print a machine-readable summary (JSON) on stdout")
+
+
+def _run_build(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from .build import build, default_out_dir
+    from .export import DEFAULT_FORMATS
+
+    out_dir = Path(args.out) if args.out else default_out_dir(Path(args.grammar).stem)
+    formats = list(dict.fromkeys([*DEFAULT_FORMATS, *args.export]))
+    scene = build(args.grammar, seed=args.seed, lot=args.lot, units=args.units,
+                  out_dir=out_dir, formats=formats, physics=not args.no_physics,
+                  robot_radius=args.robot_radius, strict=args.strict,
+                  quiet=args.quiet or args.json, max_depth=args.max_depth)
+    if args.json:
+        import json
+
+        from .summary import summary_dict
+
+        print(json.dumps(summary_dict(scene, out_dir=out_dir), indent=2, ensure_ascii=False))
+    elif not args.quiet:
+        from .summary import print_summary
+
+        print_summary(scene, out_dir=out_dir)
+    return 0
+
+
+def _add_check_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
+    parser.add_argument("--quiet", action="store_true", help="print nothing but errors")
+
+
+def _run_check(args: argparse.Namespace) -> int:
+    from .validate import check_file
+
+    problems = check_file(args.grammar)
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    if problems:
+        count = len(problems)
+        print(f"{args.grammar}: {count} problem{'s' * (count != 1)}", file=sys.stderr)
+        return 2
+    if not args.quiet:
+        print(f"{args.grammar}: ok")
+    return 0
+
+
+COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None],
+                          Callable[[argparse.Namespace], int]]] = {
+    "build": ("derive, check and export a building", _add_build_arguments, _run_build),
+    "check": ("check a grammar without building it", _add_check_arguments, _run_check),
+}
+"""Subcommand name → (help, add_arguments, run)."""
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="cga", description="Shape-grammar building generator.",
+        epilog="Exit status: 0 success, 2 an error in the input (grammar, rule table, "
+               "option, missing file).")
+    parser.add_argument("--version", action="version", version=f"cga {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    for name, (help_text, add_arguments, run) in COMMANDS.items():
+        sub = commands.add_parser(name, help=help_text, description=help_text)
+        add_arguments(sub)
+        sub.set_defaults(run=run)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status.
+
+    Parameters
+    ----------
+    argv:
+        Arguments without the program name (default: ``sys.argv[1:]``).
+    """
+    args = _parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except CGAError as error:
+        print(error, file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+

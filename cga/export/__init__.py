@@ -1,0 +1,34 @@
+"""Exporters: one pure builder and one writer per output format (DESIGN §10).
+
+:data:`EXPORTERS` maps a format name to a writer
+``export_x(scene, nodes, out_dir: Path, name: str) -> list[Path]`` that writes its files
+into ``out_dir`` atomically (:func:`cga.fsutil.atomic_write`) and returns their paths.
+``cga build`` writes :data:`DEFAULT_FORMATS` and whatever ``--export`` adds. A new
+format is one module with its builder and writer, plus one entry here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+from cga.scene import Scene, SceneNode
+
+from .glb import export_glb
+from .plan import export_plans
+from .scene_json import export_scene_json
+
+__all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS"]
+
+Exporter = Callable[[Scene, Sequence[SceneNode], Path, str], list[Path]]
+"""``export_x(scene, nodes, out_dir, name) -> written paths``."""
+
+EXPORTERS: dict[str, Exporter] = {
+    "glb": export_glb,
+    "json": export_scene_json,
+    "plan": export_plans,
+}
+"""Format name → writer."""
+
+DEFAULT_FORMATS: tuple[str, ...] = ("glb", "json", "plan")
+"""What ``cga build`` writes without ``--export``."""

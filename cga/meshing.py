@@ -1,0 +1,156 @@
+"""Turn a Scene's terminal shapes into named world-space meshes (:class:`~cga.scene.SceneNode`).
+
+* A mass becomes a watertight prism: its footprint is extruded with
+  :func:`trimesh.creation.extrude_polygon` (which builds along +z from the x–y plane)
+  and turned to y-up. A mass of height 0 (an un-extruded lot) becomes a flat face.
+* A face becomes a triangulated polygon whose triangles face along its outward normal.
+* A storey (a terminal with a floor plan) becomes the floor's solids from
+  ``cga.operations.floorplan.solids.floor_nodes`` plus one node per furniture item from
+  ``cga.operations.furniture.library.item_node``. Those modules are imported only when
+  a scene has floors, so massing builds never load them.
+
+Node paths: masses and faces are named by their shape path (``Lot/Body/Upper[2]``);
+floor nodes are named by the floor modules (``floor1/room3_Kitchen/wall2``).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from shapely.geometry import Polygon
+
+from .scene import Scene, SceneNode
+from .shape import Face, Mass, Shape
+
+if TYPE_CHECKING:  # pragma: no cover
+    import trimesh
+
+    from cga.operations.furniture.library import ModelLibrary
+
+__all__ = ["mass_mesh", "face_mesh", "footprint_mesh", "shape_node", "scene_nodes"]
+
+# (x, -z) plan polygon extruded along +z, then turned -90° about x: (x, y, z) → (x, z, -y),
+# so (x, -z_plan, h) lands at (x, h, z_plan): a rotation, so triangle winding survives.
+_TO_Y_UP = np.array([[1.0, 0.0, 0.0, 0.0],
+                     [0.0, 0.0, 1.0, 0.0],
+                     [0.0, -1.0, 0.0, 0.0],
+                     [0.0, 0.0, 0.0, 1.0]])
+
+
+def _plan_to_xy(footprint: Polygon) -> Polygon:
+    """The footprint mirrored to (x, -z), so extrusion along +z and the turn to y-up
+    restore the plan exactly."""
+    return Polygon([(x, -z) for x, z in footprint.exterior.coords],
+                   [[(x, -z) for x, z in ring.coords] for ring in footprint.interiors])
+
+
+def mass_mesh(mass: Mass) -> "trimesh.Trimesh":
+    """The prism of a mass in world coordinates (y up), watertight, outward normals.
+
+    Raises
+    ------
+    ValueError
+        The mass has no height (use :func:`face_mesh` of its footprint instead).
+    """
+    import trimesh
+
+    if not mass.height > 0:
+        raise ValueError("a mass without height has no volume; mesh it as a face")
+    mesh = trimesh.creation.extrude_polygon(_plan_to_xy(mass.footprint), mass.height)
+    transform = _TO_Y_UP.copy()
+    transform[1, 3] = mass.base
+    mesh.apply_transform(transform)
+    return mesh
+
+
+def face_mesh(vertices: Any, normal: Any | None = None) -> "trimesh.Trimesh":
+    """A planar polygon (N×3 vertices, counter-clockwise seen from outside) triangulated,
+    triangles facing along ``normal`` (default: the polygon's Newell normal)."""
+    import trimesh
+
+    pts = np.asarray(vertices, dtype=float)
+    if normal is None:
+        normal = np.cross(pts, np.roll(pts, -1, axis=0)).sum(axis=0)
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n)
+    u = pts[1] - pts[0]
+    u = u - n * (u @ n)
+    u = u / np.linalg.norm(u)
+    v = np.cross(n, u)
+    local = (pts - pts[0]) @ np.column_stack([u, v])
+    flat_vertices, triangles = trimesh.creation.triangulate_polygon(Polygon(local))
+    points = pts[0] + np.outer(flat_vertices[:, 0], u) + np.outer(flat_vertices[:, 1], v)
+    return trimesh.Trimesh(vertices=points, faces=_facing(points, triangles, n), process=False)
+
+
+def footprint_mesh(mass: Mass) -> "trimesh.Trimesh":
+    """A flat mass (height 0) as its footprint triangulated at ``base``, holes kept,
+    facing up."""
+    import trimesh
+
+    flat, triangles = trimesh.creation.triangulate_polygon(mass.footprint)
+    points = np.column_stack([flat[:, 0], np.full(len(flat), mass.base), flat[:, 1]])
+    return trimesh.Trimesh(vertices=points, faces=_facing(points, triangles, (0.0, 1.0, 0.0)),
+                           process=False)
+
+
+def _facing(points: np.ndarray, triangles: np.ndarray, normal: Any) -> np.ndarray:
+    """``triangles`` with their winding flipped if they face away from ``normal``."""
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    if not len(triangles):
+        return triangles
+    a, b, c = (points[triangles[:, i]] for i in range(3))
+    if float(np.cross(b - a, c - a).sum(axis=0) @ np.asarray(normal, dtype=float)) < 0:
+        return triangles[:, ::-1].copy()
+    return triangles
+
+
+def shape_node(shape: Shape) -> SceneNode:
+    """The scene node of a terminal mass or face, named by its shape path."""
+    geometry = shape.geometry
+    extras: dict[str, Any] = {"symbol": shape.symbol, "shape_path": shape.path_name}
+    for key in ("floor", "index"):
+        if key in shape.attrs:
+            extras[key] = shape.attrs[key]
+    if isinstance(geometry, Mass) and geometry.height > 0:
+        return SceneNode(path=shape.path_name, kind="mass", mesh=mass_mesh(geometry),
+                         extras=extras)
+    if isinstance(geometry, Mass):
+        return SceneNode(path=shape.path_name, kind="face", mesh=footprint_mesh(geometry),
+                         extras={**extras, "face": "top"})
+    face: Face = geometry
+    return SceneNode(path=shape.path_name, kind="face", mesh=face_mesh(face.vertices, face.normal()),
+                     extras={**extras, "face": face.kind})
+
+
+def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[SceneNode]:
+    """Every mesh of the build, in derivation order.
+
+    Parameters
+    ----------
+    scene:
+        The build's scene.
+    library:
+        Furniture models; default: the grammar's folders, then the shipped models.
+
+    Returns
+    -------
+    list of SceneNode
+        Masses and faces named by shape path; for each storey its floor solids
+        (walls, slab, ceiling, ...) followed by its furniture.
+    """
+    nodes: list[SceneNode] = []
+    for shape in scene.terminals:
+        if shape.plan is None:
+            nodes.append(shape_node(shape))
+            continue
+        from cga.operations.floorplan.solids import floor_nodes
+        from cga.operations.furniture.library import default_library, grammar_model_dirs, item_node
+
+        if library is None:
+            extra = grammar_model_dirs(scene.source) if scene.source is not None else []
+            library = default_library(extra)
+        nodes.extend(floor_nodes(shape.plan))
+        nodes.extend(item_node(item, shape.plan, library) for item in shape.plan.furniture)
+    return nodes

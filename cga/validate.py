@@ -1,0 +1,154 @@
+"""``cga check``: find a grammar's mistakes without deriving any geometry.
+
+Everything the evaluator would reject that does not depend on a shape is checked here,
+for every rule and every branch (a derivation only visits the branches it takes):
+unknown operations, argument counts, names and kinds, undefined variables, successor
+arity and split parts, stochastic percentages, the ``Lot:`` shape and the rule tables
+named by path arguments. Shape attributes (``scope.sx``, ``area``, ...) and ``[a;b]``
+draws inside rules are unknown statically; arguments that depend on them skip the kind
+check. All problems are reported, not only the first.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from . import ast
+from .binding import bind_arguments
+from .errors import CGAError, DerivationError, ResourceNotFoundError, SourceError
+from .evaluator import (check_percentages, check_successors, evaluate_units,
+                        evaluate_variables, index_rules, start_symbol)
+from .expressions import ATTRIBUTES, UNKNOWN, Namespace, Value, evaluate
+from .lot import lot_from_call
+from .resources import resolve_resource
+from cga.operations import OperationRegistry, UnknownOperation
+
+__all__ = ["check_grammar", "check_file"]
+
+
+class _Checker:
+    def __init__(self, grammar: ast.Grammar, base_dir: Path, operations: OperationRegistry):
+        self.grammar = grammar
+        self.base_dir = base_dir
+        self.operations = operations
+        self.problems: list[CGAError] = []
+        self.units = 1.0
+
+    def attempt(self, check, *args) -> object:
+        """Run one check; record a user error and carry on."""
+        try:
+            return check(*args)
+        except CGAError as error:
+            self.problems.append(error)
+            return None
+
+    def run(self) -> list[CGAError]:
+        self.attempt(start_symbol, self.grammar)
+        self.attempt(index_rules, self.grammar)
+        self.units = self.attempt(evaluate_units, self.grammar) or 1.0
+        variables = self.attempt(evaluate_variables, self.grammar, None)
+        if variables is None:
+            variables = {a.name: UNKNOWN for a in self.grammar.variables}
+        if self.grammar.lot is not None:
+            self.attempt(self.check_lot, variables)
+        ns = Namespace(variables=variables, attributes=dict.fromkeys(ATTRIBUTES, UNKNOWN))
+        for rule in self.grammar.rules:
+            self.check_body(rule, rule.body, ns)
+        return self.problems
+
+    def check_lot(self, variables: dict[str, Value]) -> None:
+        call = self.grammar.lot
+        values = [evaluate(arg, Namespace(variables=variables)) for arg in call.args]
+        if UNKNOWN not in values:
+            lot_from_call(call.name, values, call.span, self.units)
+
+    def check_body(self, rule: ast.Rule, body: ast.Body, ns: Namespace) -> None:
+        if isinstance(body, ast.Sequence):
+            for step in body.steps:
+                self.attempt(self.check_step, rule, step, ns)
+            return
+        if isinstance(body, ast.Stochastic):
+            self.attempt(check_percentages, body, ns)
+        else:
+            for branch in body.branches:
+                if branch.guard is not None:
+                    self.attempt(evaluate, branch.guard, ns)
+        for branch in body.branches:
+            self.check_body(rule, branch.body, ns)
+
+    def check_step(self, rule: ast.Rule, step: ast.Step, ns: Namespace) -> None:
+        if step.op is None:
+            return
+        call = step.op
+        try:
+            operation = self.operations[call.name]
+        except UnknownOperation as error:
+            hint = (f"did you mean '{error.suggestions[0]}'?" if error.suggestions else
+                    "operations: " + ", ".join(sorted(self.operations)))
+            raise DerivationError(f"unknown operation '{call.name}'", call.span, hint=hint) from None
+        check_successors(operation, step, rule)
+        for part in step.parts:
+            self.attempt(evaluate, part.size, ns)
+        values = []
+        for arg in call.args:
+            value = self.attempt(evaluate, arg.value, ns)
+            values.append(UNKNOWN if value is None else value)
+        args = bind_arguments(operation, call, values, units=self.units)
+        for param in operation.params:
+            value = args.get(param.name)
+            if param.kind == "path" and isinstance(value, str):
+                try:
+                    resolve_resource(value, "rules", base_dir=self.base_dir)
+                except ResourceNotFoundError as error:
+                    span = next((a.span for a, v in zip(call.args, values) if v == value), None)
+                    raise DerivationError(str(error), span or call.span) from None
+
+
+def check_grammar(grammar: ast.Grammar, *, base_dir: str | Path | None = None,
+                  operations: OperationRegistry | None = None) -> list[CGAError]:
+    """All static problems of a parsed grammar, in source order of the checks.
+
+    Parameters
+    ----------
+    grammar:
+        The parsed grammar.
+    base_dir:
+        Folder rule-table paths are resolved from (default: the grammar file's folder).
+    operations:
+        Operation table (default: the built-in operations).
+
+    Returns
+    -------
+    list of CGAError
+        Empty when the grammar is fine. Source errors carry spans.
+    """
+    folder = Path(base_dir) if base_dir is not None else Path(grammar.file).parent
+    table = (operations or OperationRegistry()).copy()
+    return _Checker(grammar, folder, table).run()
+
+
+def check_file(path: str | Path, *, operations: OperationRegistry | None = None
+               ) -> list[CGAError]:
+    """Parse and check a grammar file; source errors come with the file's text attached.
+
+    Raises
+    ------
+    ResourceNotFoundError
+        The file does not exist.
+    """
+    from .parser import parse
+
+    file = Path(path)
+    if not file.is_file():
+        raise ResourceNotFoundError("grammar", str(path), [str(file.resolve())])
+    text = file.read_text(encoding="utf-8")
+    try:
+        problems = check_grammar(parse(text, str(file)), base_dir=file.parent,
+                                 operations=operations)
+    except SourceError as error:
+        problems = [error]
+    for problem in problems:
+        if isinstance(problem, SourceError) and problem.span is not None \
+                and problem.span.file == str(file):
+            problem.with_source(text)
+    return problems
