@@ -7,6 +7,7 @@ node equality, so they are checked separately where they matter.
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import pytest
 
@@ -508,3 +509,12 @@ def _timed(action) -> float:
     start = time.perf_counter()
     action()
     return time.perf_counter() - start
+
+
+def test_language_reference_example_parses():
+    reference = Path(__file__).resolve().parents[3] / "docs" / "language.md"
+    example = reference.read_text(encoding="utf-8").split("```\n", 2)[1]
+    grammar = parse(example, "house.grammar")
+    assert [r.predecessor.name for r in grammar.rules] == [
+        "Lot", "Body", "GroundFloor", "UpperFloor", "Floor", "Typed"]
+    assert grammar.lot.name == "rectangle" and grammar.units == num(1)
