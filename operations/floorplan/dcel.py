@@ -28,7 +28,7 @@ from collections.abc import Iterator, Sequence
 
 from cga.model import OUTSIDE
 
-__all__ = ["EPS", "Vertex", "HalfEdge", "Face", "DCEL", "signed_area"]
+__all__ = ["EPS", "Vertex", "HalfEdge", "Face", "DCEL", "signed_area", "point_in_ring"]
 
 EPS = 1e-7
 """Distance (m) under which two points are the same point."""
@@ -347,7 +347,7 @@ class DCEL:
             raise ValueError("the cut segment has zero length")
         ring = self.points(face)
         mid = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
-        if not _inside_ring(mid, ring) or _segment_touches_ring(p, q, ring):
+        if not point_in_ring(mid, ring) or _segment_touches_ring(p, q, ring):
             raise ValueError(f"the segment {p} -> {q} is not a chord of face {face.id}")
         a = self._boundary_edge_at(face, p)
         b = self._boundary_edge_at(face, q)
@@ -438,8 +438,9 @@ def _on_open_segment(p: Point, a: Point, b: Point) -> bool:
     return _on_segment(p, a, b) and math.dist(p, a) > EPS and math.dist(p, b) > EPS
 
 
-def _inside_ring(p: Point, ring: Sequence[Point]) -> bool:
-    """Even-odd point-in-polygon test (points on the boundary count as outside)."""
+def point_in_ring(p: Point, ring: Sequence[Point]) -> bool:
+    """Whether ``p`` lies strictly inside the closed ring (even-odd rule; points on the
+    boundary count as outside)."""
     inside = False
     n = len(ring)
     for i in range(n):

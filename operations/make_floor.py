@@ -1,0 +1,126 @@
+"""``make_floor(split, wallWidth, numWindows>windowWidth>windowHigh, doorWidth, doorHeight)``.
+
+Partitions a storey into rooms (DESIGN §6, thesis §5.1): the floor slice's footprint is
+cut by a randomised BSP over a half-edge structure into ``split + 1`` rooms, outer walls
+get their windows, and the shape passes on unchanged with a
+:class:`cga.model.FloorPlan` attached. Doors come later (``type_rooms``), and the 3D
+walls and slabs are made from the final plan at meshing time
+(:func:`cga.operations.floorplan.solids.floor_nodes`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from shapely.geometry import Polygon
+from shapely.geometry.polygon import orient
+
+from cga.errors import DerivationError
+from cga.model import Diagnostic, FloorSettings
+from cga.randomness import stream
+from cga.shape import Mass, Shape
+
+from .base import Child, Operation, OperationContext, Param
+from .floorplan.assemble import plan_from_dcel
+from .floorplan.bsp import partition
+
+__all__ = ["MakeFloor"]
+
+
+class MakeFloor(Operation):
+    """Floor slice → the same slice with a floor plan of ``split + 1`` rooms."""
+
+    name = "make_floor"
+    params = (
+        Param("split", "count", doc="number of BSP cuts; rooms = split + 1"),
+        Param("wallWidth", "length", doc="wall thickness"),
+        Param("windows", "tuple", items=("count", "length", "length"),
+              doc="numWindows>windowWidth>windowHigh: windows per outer wall segment, size"),
+        Param("doorWidth", "length", doc="door width (used by type_rooms)"),
+        Param("doorHeight", "length", doc="door height (used by type_rooms)"),
+        Param("min_room_width", "length", default=2.4, keyword_only=True,
+              doc="no room narrower than this anywhere (m)"),
+        Param("min_room_area", "area", default=6.0, keyword_only=True,
+              doc="no room smaller than this (m²)"),
+        Param("cut_range", "range", default=(0.35, 0.65), keyword_only=True,
+              doc="cut position drawn from this fraction of a room's extent"),
+        Param("same_layout", "bool", default=False, keyword_only=True,
+              doc="every floor made by this rule gets the same layout"),
+        Param("window_sill", "length", default=0.9, keyword_only=True,
+              doc="height of the window bottoms above the floor (m)"),
+    )
+    doc = ("make_floor(split, wallWidth, numWindows>windowWidth>windowHigh, doorWidth, "
+           "doorHeight): partition a floor into split + 1 rooms")
+
+    def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        mass = shape.geometry
+        if not isinstance(mass, Mass) or mass.height <= 0:
+            raise DerivationError(
+                "make_floor works on a storey (a mass with height), not on this shape",
+                hint='cut the body into storeys first: repeated_split("y", floorHeight){...}')
+        settings = _settings(args, mass.height, ctx.units)
+        footprint = _footprint(mass.footprint)
+        split = args["split"]
+        lo, hi = args["cut_range"]
+        if not 0 < lo <= hi < 1:
+            raise DerivationError(f"cut_range must satisfy 0 < lo ≤ hi < 1, got ({lo:g}, {hi:g})")
+        min_width, min_area = args["min_room_width"], args["min_room_area"]
+        if min_width <= 2 * settings.wall_thickness:
+            raise DerivationError(
+                f"min_room_width ({min_width / ctx.units:g}) must be more than twice wallWidth "
+                f"({settings.wall_thickness / ctx.units:g}), or rooms have no floor left")
+        if min_area < 0:
+            raise DerivationError(f"min_room_area must not be negative, got {min_area / ctx.units ** 2:g}")
+        rng = stream(ctx.seed, ("make_floor", shape.symbol)) if args["same_layout"] else ctx.rng
+        index = int(shape.attrs.get("floor", 0))
+        result = partition(list(footprint.exterior.coords)[:-1], split, rng, min_width=min_width,
+                           min_area=min_area, cut_range=(lo, hi))
+        if result.shortfall is not None:
+            ctx.report(Diagnostic("warning", "make_floor",
+                                  f"made {len(result.dcel.faces)} rooms instead of {split + 1}: "
+                                  f"{result.shortfall}", floor=index))
+        try:
+            plan = plan_from_dcel(result.dcel, settings=settings, index=index,
+                                  elevation=mass.base, height=mass.height)
+        except ValueError as error:
+            raise DerivationError(f"the floor is too narrow for its walls: {error}") from None
+        return [Child(successor=0, geometry=mass, scope=shape.scope, plan=plan)]
+
+
+def _settings(args: dict[str, Any], storey: float, units: float) -> FloorSettings:
+    """Floor settings from the arguments, checked against the storey height."""
+    count, window_width, window_height = args["windows"]
+    settings = FloorSettings(wall_thickness=args["wallWidth"], windows_per_wall=count,
+                             window_width=window_width, window_height=window_height,
+                             window_sill=args["window_sill"], door_width=args["doorWidth"],
+                             door_height=args["doorHeight"])
+    named = {"wallWidth": settings.wall_thickness, "windowWidth": window_width,
+             "windowHigh": window_height, "doorWidth": settings.door_width,
+             "doorHeight": settings.door_height}
+    for name, value in named.items():
+        if not value > 0:
+            raise DerivationError(f"make_floor {name} must be positive, got {value / units:g}")
+    if settings.window_sill < 0:
+        raise DerivationError(f"window_sill must not be negative, got {settings.window_sill / units:g}")
+    clear = storey - settings.slab_thickness
+    walls = (f"the walls are {clear / units:g} high (storey {storey / units:g} minus a "
+             f"{settings.slab_thickness / units:g} floor slab)")
+    if settings.door_height >= clear:
+        raise DerivationError(f"doorHeight {settings.door_height / units:g} does not fit: {walls}")
+    top = settings.window_sill + window_height
+    if count > 0 and top >= clear:
+        raise DerivationError(
+            f"windows do not fit: sill {settings.window_sill / units:g} + windowHigh "
+            f"{window_height / units:g} = {top / units:g}, but {walls}",
+            hint="lower windowHigh or window_sill, or make the storeys taller")
+    return settings
+
+
+def _footprint(polygon: Polygon) -> Polygon:
+    """The footprint counter-clockwise, without repeated or collinear vertices."""
+    if polygon.interiors:
+        raise DerivationError("make_floor needs a footprint without holes (courtyards are not supported)")
+    clean = orient(polygon.simplify(0.0), sign=1.0)
+    if not isinstance(clean, Polygon) or not clean.is_valid or clean.area <= 0:
+        raise DerivationError("make_floor needs a simple, non-empty footprint polygon")
+    return clean
