@@ -15,8 +15,12 @@ from pathlib import Path
 from cga.scene import Scene, SceneNode
 
 from .glb import export_glb
+from .obj import export_obj
 from .plan import export_plans
+from .rosmap import export_rosmap
 from .scene_json import export_scene_json
+from .sdf import export_sdf
+from .urdf import export_urdf
 
 __all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS"]
 
@@ -27,6 +31,10 @@ EXPORTERS: dict[str, Exporter] = {
     "glb": export_glb,
     "json": export_scene_json,
     "plan": export_plans,
+    "obj": export_obj,
+    "urdf": export_urdf,
+    "sdf": export_sdf,
+    "map": export_rosmap,
 }
 """Format name → writer."""
 
