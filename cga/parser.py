@@ -61,8 +61,9 @@ def parse(text: str, file: str = "<string>") -> ast.Grammar:
     Notes
     -----
     Linear in the length of the text (LALR(1)); the lark parser is built once per
-    process.
+    process. A leading byte-order mark is skipped (columns count as an editor shows them).
     """
+    text = text.removeprefix("\ufeff")
     try:
         try:
             tree = _lark_parser().parse(text)
@@ -83,7 +84,7 @@ def parse(text: str, file: str = "<string>") -> ast.Grammar:
 
 
 def parse_file(path: str | Path) -> ast.Grammar:
-    """Read and parse a ``.grammar`` file (UTF-8, an optional byte-order mark is skipped).
+    """Read and parse a ``.grammar`` file (UTF-8).
 
     Raises
     ------
@@ -98,7 +99,7 @@ def parse_file(path: str | Path) -> ast.Grammar:
     if not path.is_file():
         raise ResourceNotFoundError("grammar file", str(path))
     try:
-        text = path.read_text(encoding="utf-8-sig")
+        text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError as error:
         raise GrammarSyntaxError(
             f"the file is not UTF-8 text (byte {error.start} cannot be decoded)",

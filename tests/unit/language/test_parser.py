@@ -144,6 +144,11 @@ def test_comments_anywhere_and_hash_inside_strings():
     assert grammar.rules[0].body == seq(step(op("op", string("a#b")), "B"))
 
 
+def test_byte_order_mark_is_skipped():
+    grammar = parse("\ufeffRules:\nLot --> extrude(3) Mass\n")
+    assert grammar.rules[0].span.column == 1
+
+
 def test_crlf_line_endings():
     grammar = parse("Variables:\r\n  a = 1;\r\nRules:\r\nA --> extrude(a) B\r\n")
     assert grammar.rules[0].body == seq(step(op("extrude", name("a")), "B"))
