@@ -1,0 +1,206 @@
+"""Where a door fits in a wall, where it goes, which way it opens.
+
+A wall is a segment of a wall centre line (inner walls) or of the footprint (outer
+walls, whose solid lies inside the footprint). A door leaf needs the opening itself plus
+:data:`DOOR_MARGIN` on both sides, clear of the walls standing at the segment's ends and
+of every other opening in it:
+
+* at an end, the wall meeting there takes half a thickness if the end is inside the
+  floor and a whole thickness if it lies on the footprint (the outer wall's solid lies
+  inside the footprint); every end of an outer wall counts as lying on the footprint;
+* windows and doors already in the wall are kept :data:`DOOR_MARGIN` away.
+
+The leaf is hinged at the jamb nearer the wall's closer end, so the open leaf rests
+along the wall that meets there, and swings into the bigger of the two rooms (a front
+door into its room), unless the quarter circle it sweeps only fits the other room.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import Literal
+
+import numpy as np
+import shapely
+from shapely.geometry import Polygon
+
+from cga.model import OUTSIDE, Door, FloorPlan, Opening, Room, Wall, Window
+
+__all__ = [
+    "DOOR_MARGIN",
+    "door_spans",
+    "free_intervals",
+    "door_centre",
+    "front_door_site",
+    "clear_windows",
+    "make_door",
+    "door_opening",
+    "door_swing",
+]
+
+DOOR_MARGIN = 0.1
+"""Clear wall (m) kept on both sides of a door opening."""
+
+Interval = tuple[float, float]
+
+
+def door_spans(plan: FloorPlan) -> dict[int, Interval]:
+    """The stretch of every wall where a door opening may lie, ignoring other openings.
+
+    Returns
+    -------
+    dict[int, tuple[float, float]]
+        Wall id → ``(lo, hi)``, distances from the wall's start; ``hi - lo`` is the
+        widest door the wall can take (negative when the wall is too short for any).
+    """
+    t = plan.settings.wall_thickness
+    ends = np.array([[w.start, w.end] for w in plan.walls], dtype=float).reshape(-1, 2)
+    on_footprint = shapely.distance(plan.footprint.boundary, shapely.points(ends)) < 1e-6
+    spans: dict[int, Interval] = {}
+    for k, wall in enumerate(plan.walls):
+        start_clear = DOOR_MARGIN + (t if wall.outer or on_footprint[2 * k] else t / 2)
+        end_clear = DOOR_MARGIN + (t if wall.outer or on_footprint[2 * k + 1] else t / 2)
+        spans[wall.id] = (start_clear, wall.length - end_clear)
+    return spans
+
+
+def free_intervals(wall: Wall, span: Interval) -> list[Interval]:
+    """``span`` minus the wall's openings, each widened by :data:`DOOR_MARGIN`."""
+    intervals = [span]
+    for opening in wall.openings:
+        lo = opening.center - opening.width / 2 - DOOR_MARGIN
+        hi = opening.center + opening.width / 2 + DOOR_MARGIN
+        intervals = [piece for a, b in intervals
+                     for piece in ((a, min(b, lo)), (max(a, hi), b)) if piece[1] > piece[0]]
+    return intervals
+
+
+def door_centre(interval: Interval, width: float, rng: np.random.Generator,
+                position: Literal["center", "random"]) -> float:
+    """A door centre (distance from the wall start) inside ``interval``.
+
+    ``"center"`` takes the middle; ``"random"`` draws uniformly among the positions
+    that keep the whole opening inside the interval.
+    """
+    lo, hi = interval[0] + width / 2, interval[1] - width / 2
+    if position == "center" or hi <= lo:
+        return (interval[0] + interval[1]) / 2
+    return float(rng.uniform(lo, hi))
+
+
+def front_door_site(candidates: Sequence[tuple[Wall, Interval]],
+                    width: float) -> tuple[Wall, Interval, bool]:
+    """Where the front door goes among a room's outer walls.
+
+    Parameters
+    ----------
+    candidates:
+        The room's outer walls with their door spans, longest span first (at least one,
+        whose span takes the door).
+    width:
+        The door width.
+
+    Returns
+    -------
+    (wall, interval, replaces_windows)
+        The longest stretch free of windows that takes the door; when there is none,
+        the first candidate's whole span, and True: the door then takes the place of
+        the windows in its way (:func:`clear_windows`).
+    """
+    best: tuple[Wall, Interval] | None = None
+    for wall, span in candidates:
+        for lo, hi in free_intervals(wall, span):
+            if hi - lo >= width and (best is None or hi - lo > best[1][1] - best[1][0]):
+                best = (wall, (lo, hi))
+    if best is not None:
+        return best[0], best[1], False
+    wall, span = candidates[0]
+    return wall, span, True
+
+
+def clear_windows(wall: Wall, windows: Sequence[Window], lo: float,
+                  hi: float) -> tuple[Wall, tuple[Window, ...], tuple[Window, ...]]:
+    """Remove the windows of ``wall`` that come within :data:`DOOR_MARGIN` of ``[lo, hi]``.
+
+    Returns
+    -------
+    (wall, kept, removed)
+        The wall without those window openings, and the floor's window records split
+        into those kept and those removed.
+    """
+    def blocks(centre: float, half_width: float) -> bool:
+        return centre - half_width < hi + DOOR_MARGIN and centre + half_width > lo - DOOR_MARGIN
+
+    openings = tuple(o for o in wall.openings
+                     if o.kind != "window" or not blocks(o.center, o.width / 2))
+    removed = tuple(w for w in windows if w.wall == wall.id
+                    and blocks(math.dist(wall.start, w.position), w.width / 2))
+    kept = tuple(w for w in windows if w not in removed)
+    return replace(wall, openings=openings), kept, removed
+
+
+def _face_offset(wall: Wall, thickness: float) -> float:
+    """Distance from the wall's line to its face on the room side."""
+    return thickness if wall.outer else thickness / 2
+
+
+def _swing_polygon(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
+                   room: int, thickness: float) -> Polygon:
+    d = wall.direction
+    normal = np.array([-d[1], d[0]]) if room == wall.rooms[0] else np.array([d[1], -d[0]])
+    jamb = centre - width / 2 if hinge == "start" else centre + width / 2
+    along = d if hinge == "start" else -d
+    pivot = np.asarray(wall.point_at(jamb)) + normal * _face_offset(wall, thickness)
+    angles = np.linspace(0.0, math.pi / 2, 9)
+    arc = pivot + width * (np.cos(angles)[:, None] * along + np.sin(angles)[:, None] * normal)
+    return Polygon([tuple(pivot), *map(tuple, arc)])
+
+
+def door_swing(door: Door, plan: FloorPlan) -> Polygon:
+    """The quarter circle a door leaf sweeps in ``door.swing_room`` (plan coordinates).
+
+    Useful to keep furniture out of a door's way.
+    """
+    wall = plan.wall(door.wall)
+    centre = math.dist(wall.start, door.position)
+    return _swing_polygon(wall, centre, door.width, door.hinge, door.swing_room,
+                          plan.settings.wall_thickness)
+
+
+def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
+              plan: FloorPlan, *, reason: Literal["rule", "reachability", "front"]) -> Door:
+    """A door record for an opening centred ``centre`` metres along ``wall``.
+
+    ``rooms`` are the two rooms it joins (the second is :data:`~cga.model.OUTSIDE` for
+    the front door, which opens into the first). The hinge is the jamb nearer the
+    wall's closer end; the leaf swings into the bigger room unless its sweep only fits
+    the other one.
+    """
+    settings = plan.settings
+    hinge: Literal["start", "end"] = "start" if centre <= wall.length / 2 else "end"
+    if OUTSIDE in rooms:
+        swing_room = rooms[0] if rooms[1] == OUTSIDE else rooms[1]
+    else:
+        by_size = sorted((plan.room(r) for r in rooms), key=lambda r: (-r.area, r.id))
+        swing_room = next((r.id for r in by_size if _sweep_fits(
+            r, wall, centre, settings.door_width, hinge, settings.wall_thickness)),
+            by_size[0].id)
+    return Door(id=door_id, wall=wall.id, rooms=rooms, position=wall.point_at(centre),
+                width=settings.door_width, height=settings.door_height,
+                swing_room=swing_room, hinge=hinge, is_front=reason == "front",
+                reason=reason)
+
+
+def _sweep_fits(room: Room, wall: Wall, centre: float, width: float,
+                hinge: Literal["start", "end"], thickness: float) -> bool:
+    sweep = _swing_polygon(wall, centre, width, hinge, room.id, thickness)
+    return room.interior.buffer(1e-6).covers(sweep)
+
+
+def door_opening(door: Door, plan: FloorPlan) -> Opening:
+    """The :class:`~cga.model.Opening` cut into the door's wall."""
+    wall = plan.wall(door.wall)
+    return Opening(kind="door", center=math.dist(wall.start, door.position),
+                   width=door.width, height=door.height)

@@ -1,0 +1,155 @@
+"""Explaining, in numbers, why the mandatory rules do not fit a floor.
+
+A failed search leaves its deepest dead end (:class:`~.backtrack.Failure`): the rules
+placed so far and the rule that found no room. :func:`explain_failure` turns it into a
+sentence a rule author can act on ("Bedroom needs ≥ 12.0 m²; the largest free room next
+to a Livingroom has 9.4 m²"); :func:`static_reasons` finds obstacles that hold whatever
+the arrangement (a rule bigger than every room, too few big rooms, rules that can never
+meet a listed neighbour), which are stated first because they are the real cause.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from .backtrack import Failure, RoomSet, RuleSpec, room_fits
+
+__all__ = ["explain_failure", "static_reasons"]
+
+
+def _area(value: float) -> str:
+    return f"{value:.1f} m²"
+
+
+def _either(names: Sequence[str]) -> str:
+    names = list(names)
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+
+
+def _listed(rule: RuleSpec, rules: Sequence[RuleSpec]) -> list[str]:
+    """The rule's neighbour types that a mandatory rule provides (else all it lists)."""
+    provided = [r.type for r in rules if r.type in rule.neighbours and r is not rule]
+    return provided or sorted(rule.neighbours)
+
+
+def explain_failure(rooms: RoomSet, rules: Sequence[RuleSpec], failure: Failure) -> str:
+    """Say in numbers why the search got stuck at ``failure``.
+
+    Examples: ``Bedroom needs ≥ 12.0 m²; the largest free room next to a Livingroom has
+    9.4 m²`` or ``Kitchen needs a Livingroom neighbour; free rooms adjoin only Bathroom,
+    Bedroom``. The placements made so far are named first.
+    """
+    type_at = {room: rules[k].type for k, room in enumerate(failure.rooms) if room >= 0}
+    placed = ", ".join(f"{t} in {rooms.name(i)}" for i, t in type_at.items())
+    prefix = f"with {placed}: " if placed else ""
+    if failure.kind == "crowded":
+        names = [rules[k].type for k in failure.rules]
+        where = ", ".join(rooms.name(i) for i in failure.candidates) or "no room"
+        return (f"{prefix}{_and(names)} each need one of {where} (the free rooms big enough "
+                f"and beside a listed type or a room where one could go), which are too few")
+    rule = rules[failure.rules[0]]
+    if failure.kind == "stranded":
+        return prefix + _stranded(rooms, rules, rule, failure, type_at)
+    return prefix + _no_room(rooms, rules, rule, type_at)
+
+
+def _and(names: Sequence[str]) -> str:
+    names = list(names)
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def _stranded(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec, failure: Failure,
+              type_at: dict[int, str]) -> str:
+    home = failure.rooms[failure.rules[0]]
+    wanted = _listed(rule, rules)
+    head = f"{rule.type} in {rooms.name(home)} needs a {_either(wanted)} neighbour"
+    waiting = [r for k, r in enumerate(rules) if r.type in wanted and failure.rooms[k] < 0]
+    if not waiting:
+        return f"{head}, but {_and(wanted)} went to other rooms"
+    beside = [i for i in rooms.adjacency[home] if i not in type_at]
+    if not beside:
+        return f"{head} but has no free neighbour left"
+    smallest = min(waiting, key=lambda r: r.min_area)
+    sizes = ", ".join(_area(rooms.areas[i]) for i in beside)
+    return (f"{head}; its free neighbours ({sizes}) are smaller than a {smallest.type} "
+            f"needs ({_area(smallest.min_area)})")
+
+
+def _no_room(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec,
+             type_at: dict[int, str]) -> str:
+    free = [i for i in range(len(rooms)) if i not in type_at]
+    if not free:
+        return f"no free room is left for {rule.type}"
+    door = rule.outside and rooms.entrances is not None
+    fitting = [i for i in free if room_fits(rooms, rule, i)]
+    if not fitting:
+        if door:
+            doors = [i for i in free if i in rooms.entrances]
+            if not doors:
+                return (f"{rule.type} gets the front door, but no free room has an outer "
+                        "wall long enough for a door")
+            return (f"{rule.type} needs ≥ {_area(rule.min_area)} and an outer wall for the "
+                    f"front door; the largest free room with one has "
+                    f"{_area(max(rooms.areas[i] for i in doors))}")
+        return (f"{rule.type} needs ≥ {_area(rule.min_area)}; the largest free room has "
+                f"{_area(max(rooms.areas[i] for i in free))}")
+    present = sorted({t for t in type_at.values() if t in rule.neighbours})
+    next_to = [i for i in free if any(type_at.get(j) in present for j in rooms.adjacency[i])]
+    if next_to:
+        largest = max(rooms.areas[i] for i in next_to)
+        if largest < rule.min_area:
+            return (f"{rule.type} needs ≥ {_area(rule.min_area)}; the largest free room next "
+                    f"to a {_either(present)} has {_area(largest)}")
+        return (f"{rule.type} gets the front door, but the free rooms next to a "
+                f"{_either(present)} have no outer wall long enough for a door")
+    wanted = _either(_listed(rule, rules))
+    around = sorted({type_at[j] for i in fitting for j in rooms.adjacency[i] if j in type_at})
+    if around:
+        return (f"{rule.type} needs a {wanted} neighbour; free rooms adjoin only "
+                f"{', '.join(around)}")
+    return (f"{rule.type} needs a {wanted} neighbour; the free rooms of "
+            f"≥ {_area(rule.min_area)} adjoin no typed room")
+
+
+def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
+    """Reasons that rule out every placement whatever the search does (sizes, front
+    door, neighbours that cannot exist); empty when the obstacle is the arrangement."""
+    reasons: list[str] = []
+    largest = max(rooms.areas, default=0.0)
+    for rule in rules:
+        if not any(room_fits(rooms, rule, i) for i in range(len(rooms))):
+            if rule.min_area > largest:
+                reasons.append(f"{rule.type} needs ≥ {_area(rule.min_area)}; the largest room "
+                               f"has {_area(largest)}")
+            else:
+                doors = sorted(rooms.entrances or ())
+                reasons.append(
+                    f"{rule.type} gets the front door, so it needs ≥ {_area(rule.min_area)} "
+                    + (f"and an outer wall for the door; the largest room with one has "
+                       f"{_area(max(rooms.areas[i] for i in doors))}" if doors else
+                       "and an outer wall long enough for a door; no room has one"))
+    needs = sorted(rules, key=lambda r: r.min_area, reverse=True)
+    areas = sorted(rooms.areas, reverse=True)
+    for count, rule in enumerate(needs, start=1):
+        if count <= len(areas) and areas[count - 1] < rule.min_area:
+            names = ", ".join(f"{r.type} {_area(r.min_area)}" for r in needs[:count])
+            big = sum(a >= rule.min_area for a in areas)
+            reasons.append(f"{count} mandatory rules need rooms of at least ({names}) but only "
+                           f"{big} room{'s' if big != 1 else ''} ha{'ve' if big != 1 else 's'} "
+                           f"≥ {_area(rule.min_area)}")
+            break
+    lonely = []
+    for rule in rules:
+        partners = [r for r in rules if r is not rule and r.type in rule.neighbours]
+        if not any(room_fits(rooms, rule, i) and any(room_fits(rooms, p, j) for p in partners
+                                                  for j in rooms.adjacency[i])
+                   for i in range(len(rooms))):
+            lonely.append(rule)
+    if len(lonely) > 1:
+        detail = "; ".join(
+            f"{r.type} (≥ {_area(r.min_area)}) lists {', '.join(sorted(r.neighbours))}"
+            for r in lonely)
+        reasons.append(f"{len(lonely)} rules can never get a neighbour of a listed mandatory "
+                       f"type big enough beside a room big enough for them, and only the "
+                       f"first rule placed may go without one: {detail}")
+    return reasons

@@ -1,0 +1,175 @@
+"""The room graph: which rooms a door joins, and the fewest extra doors for reachability.
+
+Thesis §3.3 and Algorithm 4 (connectRooms): after typing, two neighbouring rooms are
+joined when the rule of one lists the type of the other. Here "neighbouring" means
+sharing a wall segment that can take a door (:func:`door_sites`), so every edge of the
+graph becomes a real door, and the same adjacency is what the typing's neighbour
+requirement checks. One listing is enough (as in the thesis, where the laundry, listing
+the bathroom, gets a door to it although the bathroom does not list the laundry): the
+rule that placed a room next to a listed type thereby asks for the door.
+
+Rules need not connect every room. :func:`reachability_pairs` adds the fewest doors that
+make the floor one connected component (so every room is reachable from the entry): with
+``c`` components, ``c - 1`` doors are necessary and, since the door-capable adjacency
+of a floor is connected, sufficient. They are chosen as a minimum spanning tree of the
+components (Kruskal with :class:`networkx.utils.UnionFind`), preferring doors into hubs:
+the room with more rule doors, then the bigger room, then the longer wall.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import networkx as nx
+from networkx.utils import UnionFind
+
+from cga.errors import NoSolutionError
+from cga.model import OUTSIDE, Door, FloorPlan, Room, Wall
+
+from .doors import Interval, free_intervals
+from .rules import RuleTable
+
+__all__ = ["DoorSites", "door_sites", "rule_pairs", "reachability_pairs", "room_graph"]
+
+Pair = tuple[int, int]
+
+
+@dataclass(frozen=True)
+class DoorSites:
+    """Walls that can take a door: ``inner`` maps a room pair (ids, ascending) to its
+    shared walls, ``outer`` a room to its outer walls; each wall comes with the
+    intervals where a door opening may lie, the wall with the longest interval first."""
+
+    inner: Mapping[Pair, tuple[tuple[Wall, Interval], ...]]
+    outer: Mapping[int, tuple[tuple[Wall, Interval], ...]]
+
+    def adjacency(self, room_ids: Sequence[int]) -> tuple[frozenset[int], ...]:
+        """Door-capable neighbours of each room, as indices into ``room_ids``."""
+        index = {room: i for i, room in enumerate(room_ids)}
+        neighbours: list[set[int]] = [set() for _ in room_ids]
+        for a, b in self.inner:
+            neighbours[index[a]].add(index[b])
+            neighbours[index[b]].add(index[a])
+        return tuple(frozenset(n) for n in neighbours)
+
+    def longest(self, pair: Pair) -> float:
+        wall_intervals = self.inner[pair]
+        lo, hi = wall_intervals[0][1]
+        return hi - lo
+
+
+def door_sites(plan: FloorPlan, spans: Mapping[int, Interval], width: float) -> DoorSites:
+    """Find the walls where a door of ``width`` fits.
+
+    Parameters
+    ----------
+    plan:
+        The floor.
+    spans:
+        Per wall, the stretch a door may occupy (:func:`.doors.door_spans`).
+    width:
+        The door width (m).
+
+    Notes
+    -----
+    Outer walls are judged by their whole span, since the front door may take a
+    window's place; inner walls keep clear of their openings.
+    """
+    inner: dict[Pair, list[tuple[Wall, Interval]]] = {}
+    outer: dict[int, list[tuple[Wall, Interval]]] = {}
+    for wall in plan.walls:
+        if wall.outer:
+            intervals = [spans[wall.id]]
+        else:
+            intervals = free_intervals(wall, spans[wall.id])
+        best = max(intervals, key=lambda iv: iv[1] - iv[0], default=None)
+        if best is None or best[1] - best[0] < width - 1e-9:
+            continue
+        if wall.outer:
+            room = wall.rooms[0] if wall.rooms[1] == OUTSIDE else wall.rooms[1]
+            outer.setdefault(room, []).append((wall, best))
+        else:
+            a, b = sorted(wall.rooms)
+            inner.setdefault((a, b), []).append((wall, best))
+
+    def ranked(items: list[tuple[Wall, Interval]]) -> tuple[tuple[Wall, Interval], ...]:
+        return tuple(sorted(items, key=lambda item: (item[1][0] - item[1][1], item[0].id)))
+
+    return DoorSites(inner={k: ranked(v) for k, v in sorted(inner.items())},
+                     outer={k: ranked(v) for k, v in sorted(outer.items())})
+
+
+def rule_pairs(types: Mapping[int, str], sites: DoorSites, table: RuleTable) -> list[Pair]:
+    """Room pairs the rules connect: door-capable neighbours where either room's rule
+    lists the other's type (thesis Algorithm 4), ascending."""
+    pairs = []
+    for a, b in sites.inner:
+        rule_a, rule_b = table.rule_for(types[a]), table.rule_for(types[b])
+        if (rule_a is not None and types[b] in rule_a.neighbours) or (
+                rule_b is not None and types[a] in rule_b.neighbours):
+            pairs.append((a, b))
+    return pairs
+
+
+def reachability_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: DoorSites, *,
+                       entry: int) -> list[Pair]:
+    """The fewest extra doors that connect every room to ``entry`` (see module notes).
+
+    Raises
+    ------
+    NoSolutionError
+        Some room shares no door-capable wall with the rest of the floor, so no set of
+        doors reaches it.
+    """
+    degree = {room.id: 0 for room in rooms}
+    for a, b in pairs:
+        degree[a] += 1
+        degree[b] += 1
+    degree[entry] += 1  # the front door, or the stair for an upper floor
+    area = {room.id: room.area for room in rooms}
+    components = UnionFind(degree)
+    for a, b in pairs:
+        components.union(a, b)
+
+    def preference(pair: Pair) -> tuple:
+        hub = max(pair, key=lambda r: (degree[r], area[r], -r))
+        return (-degree[hub], -area[hub], -sites.longest(pair), pair)
+
+    added = []
+    for a, b in sorted((p for p in sites.inner if p not in set(pairs)), key=preference):
+        if components[a] != components[b]:
+            components.union(a, b)
+            added.append((a, b))
+    cut_off = sorted(r for r in degree if components[r] != components[entry])
+    if cut_off:
+        raise NoSolutionError(
+            f"room{'s' if len(cut_off) > 1 else ''} {', '.join(map(str, cut_off))} cannot be "
+            "reached from the entry: no wall shared with the rest of the floor is long enough "
+            "for a door", [_too_short(room, rooms, sites) for room in cut_off])
+    return added
+
+
+def _too_short(room: int, rooms: Sequence[Room], sites: DoorSites) -> str:
+    shared = [pair for pair in sites.inner if room in pair]
+    if shared:
+        return f"room {room} connects only to rooms {', '.join(str(sum(p) - room) for p in shared)}"
+    polygon = next(r.polygon for r in rooms if r.id == room)
+    touching = [r.id for r in rooms if r.id != room and
+                polygon.boundary.intersection(r.polygon.boundary).length > 1e-9]
+    return (f"room {room} shares walls with rooms {', '.join(map(str, touching))} but none "
+            "leaves room for a door and its margins; make rooms wider or doors narrower")
+
+
+def room_graph(plan: FloorPlan, doors: Sequence[Door], *, entry: int) -> nx.Graph:
+    """The room graph: nodes are room ids and :data:`~cga.model.OUTSIDE` (attribute
+    ``type``: the room type, ``"outside"``), one edge per door (attributes ``door``,
+    ``wall``, ``reason``). ``graph.graph["entry"]`` is the room the floor is entered by
+    (front door, or stair on upper floors)."""
+    graph = nx.Graph(entry=entry, floor=plan.index)
+    graph.add_node(OUTSIDE, type="outside")
+    for room in plan.rooms:
+        graph.add_node(room.id, type=room.type, area=room.area)
+    for door in doors:
+        graph.add_edge(*door.rooms, door=door.id, wall=door.wall, reason=door.reason)
+    return graph

@@ -1,0 +1,305 @@
+"""Room-typing rule tables: the thesis' semicolon CSV format, parsed and validated.
+
+A table names one rule per row (DESIGN §7, thesis §5.2.1)::
+
+    Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom
+    Kitchen;0.25;0.5;Livingroom;0;1;0
+    Livingroom;1;1;Bathroom, Livingroom, Bedroom, Kitchen;true;1;0
+
+The header row is required; its names are matched case-insensitively and give the column
+order. Blank lines (also rows of bare semicolons, as spreadsheets export them) are
+ignored. ``Neighbours`` is a comma list; booleans accept 0/1/true/false in any case;
+numbers may use a decimal comma (``0,25``), as German spreadsheets write them.
+
+Everything the typing relies on is checked here, once, so the typing algorithm can trust
+its input: every mistake raises :class:`~cga.errors.RuleTableError` naming the file, the
+row (1-based line number) and the column, with a did-you-mean for misspelled names.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+from cga.errors import RuleTableError
+
+__all__ = [
+    "COLUMNS",
+    "DEFAULT_TYPE",
+    "TypeRule",
+    "RuleTable",
+    "load_rule_table",
+    "parse_rule_table",
+]
+
+COLUMNS: tuple[str, ...] = (
+    "Type", "Size", "Prob", "Neighbours", "isOutsideConnected", "appearance", "additionRoom",
+)
+"""The columns of a typing table, spelled as in the thesis."""
+
+DEFAULT_TYPE = "Commonroom"
+"""The type of rooms left over once every rule that could be placed has been placed."""
+
+_TRUE = frozenset({"1", "true"})
+_FALSE = frozenset({"0", "false"})
+
+
+@dataclass(frozen=True)
+class TypeRule:
+    """One row of a typing table.
+
+    ``size`` is the minimum room area in grammar units² as written in the table (the
+    typing scales it by ``units²``). ``optional`` is the table's ``additionRoom``:
+    mandatory rules (False) must all be placed; optional ones only fill rooms that remain.
+    ``row`` is the rule's line in the file, for messages.
+    """
+
+    type: str
+    size: float
+    prob: float
+    neighbours: tuple[str, ...]
+    outside: bool
+    appearance: int
+    optional: bool
+    row: int
+
+
+@dataclass(frozen=True)
+class RuleTable:
+    """The rules of one file, in file order."""
+
+    file: str
+    rules: tuple[TypeRule, ...]
+
+    @property
+    def mandatory(self) -> tuple[TypeRule, ...]:
+        return tuple(r for r in self.rules if not r.optional)
+
+    @property
+    def optional(self) -> tuple[TypeRule, ...]:
+        return tuple(r for r in self.rules if r.optional)
+
+    @property
+    def outside_rule(self) -> TypeRule | None:
+        """The rule whose room gets the front door, if the table has one."""
+        return next((r for r in self.rules if r.outside), None)
+
+    def rule_for(self, type_name: str) -> TypeRule | None:
+        """The rule defining ``type_name`` (None for the default type without a rule)."""
+        return next((r for r in self.rules if r.type == type_name), None)
+
+
+def load_rule_table(path: str | Path) -> RuleTable:
+    """Read and parse a typing table from a file.
+
+    Raises
+    ------
+    RuleTableError
+        The file cannot be read as UTF-8 text, or its content is malformed
+        (see :func:`parse_rule_table`).
+    """
+    file = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise RuleTableError(f"not UTF-8 text ({exc.reason} at byte {exc.start}); save the "
+                             "table as UTF-8 CSV", file=file) from None
+    except OSError as exc:
+        raise RuleTableError(f"cannot read the file: {exc.strerror}", file=file) from None
+    return parse_rule_table(text, file=file)
+
+
+def parse_rule_table(text: str, *, file: str = "<rules>") -> RuleTable:
+    """Parse the text of a typing table.
+
+    Parameters
+    ----------
+    text:
+        The table: a header row naming the seven :data:`COLUMNS`, then one rule per row.
+    file:
+        The name used in error messages.
+
+    Returns
+    -------
+    RuleTable
+        The rules in file order; neighbour names spelled as the rule defining them.
+
+    Raises
+    ------
+    RuleTableError
+        A missing or unknown column, a row with too few cells, an empty type, a bad number
+        or boolean, a type defined twice, a neighbour type that no rule defines (the
+        default type ``Commonroom`` is always known), more than one ``isOutsideConnected``
+        rule, an optional ``isOutsideConnected`` rule, or no mandatory rule.
+    """
+    rows = [(number, line) for number, line in enumerate(text.splitlines(), start=1)
+            if line.replace(";", "").strip()]
+    if not rows:
+        raise RuleTableError("the table is empty; it needs a header row "
+                             f"'{';'.join(COLUMNS)}' and at least one rule", file=file)
+    header_row, header_line = rows[0]
+    order = _column_order(header_line, file=file, row=header_row)
+    drafts = [_parse_row(line, order, file=file, row=number) for number, line in rows[1:]]
+    if not drafts:
+        raise RuleTableError("the table has a header but no rules", file=file)
+    rules = _resolve_neighbours(drafts, file=file)
+    _check_table(rules, file=file)
+    return RuleTable(file=file, rules=rules)
+
+
+def _cells(line: str) -> list[str]:
+    return [cell.strip() for cell in line.split(";")]
+
+
+def _column_order(line: str, *, file: str, row: int) -> list[str]:
+    """The canonical column name of each header cell, checking that all are present."""
+    canonical = {name.lower(): name for name in COLUMNS}
+    names = _cells(line)
+    while names and not names[-1]:  # trailing empty cells from spreadsheet exports
+        names.pop()
+    order: list[str] = []
+    for name in names:
+        known = canonical.get(name.lower())
+        if known is None:
+            close = difflib.get_close_matches(name.lower(), canonical, n=1, cutoff=0.6)
+            hint = f"; did you mean '{canonical[close[0]]}'?" if close else ""
+            raise RuleTableError(f"unknown column '{name}' in the header{hint} The header "
+                                 f"must be '{';'.join(COLUMNS)}'", file=file, row=row,
+                                 column=name)
+        if known in order:
+            raise RuleTableError(f"column '{known}' appears twice in the header",
+                                 file=file, row=row, column=known)
+        order.append(known)
+    for name in COLUMNS:
+        if name not in order:
+            raise RuleTableError(f"missing column '{name}'; the header must name "
+                                 f"'{';'.join(COLUMNS)}'", file=file, row=row, column=name)
+    return order
+
+
+def _parse_row(line: str, order: list[str], *, file: str, row: int) -> TypeRule:
+    cells = _cells(line)
+    if len(cells) < len(order):
+        missing = order[len(cells)]
+        raise RuleTableError(f"the row has {len(cells)} cells but the header has "
+                             f"{len(order)}; '{missing}' is missing", file=file, row=row,
+                             column=missing)
+    if any(cells[len(order):]):
+        raise RuleTableError(f"the row has more cells than the header's {len(order)} "
+                             f"columns: '{';'.join(c for c in cells[len(order):] if c)}'",
+                             file=file, row=row)
+    value = dict(zip(order, cells))
+
+    def error(column: str, message: str) -> RuleTableError:
+        return RuleTableError(message, file=file, row=row, column=column)
+
+    type_name = value["Type"]
+    if not type_name:
+        raise error("Type", "the room type is empty")
+    if "," in type_name:
+        raise error("Type", f"'{type_name}' is one type per row; a comma is not allowed")
+    size = _number(value["Size"], error("Size", f"bad number '{value['Size']}'"))
+    if size < 0:
+        raise error("Size", f"Size is a minimum area and cannot be negative ({size:g})")
+    prob = _number(value["Prob"], error("Prob", f"bad number '{value['Prob']}'"))
+    if not 0.0 <= prob <= 1.0:
+        raise error("Prob", f"Prob is a probability between 0 and 1, got {prob:g}")
+    neighbours = tuple(dict.fromkeys(n.strip() for n in value["Neighbours"].split(",")
+                                     if n.strip()))
+    if not neighbours:
+        raise error("Neighbours", f"{type_name} lists no neighbour types; list at least "
+                                  "one type this room may adjoin, separated by commas")
+    outside = _boolean(value["isOutsideConnected"], error(
+        "isOutsideConnected", f"unknown boolean '{value['isOutsideConnected']}'; use "
+                              "0, 1, true or false"))
+    optional = _boolean(value["additionRoom"], error(
+        "additionRoom", f"unknown boolean '{value['additionRoom']}'; use 0 (mandatory), "
+                        "1 (optional), true or false"))
+    appearance = _count(value["appearance"], error(
+        "appearance", f"appearance must be a whole number of rooms, got "
+                      f"'{value['appearance']}'"))
+    if appearance < 1 and not optional:
+        raise error("appearance", f"{type_name} is mandatory (additionRoom=0) but "
+                                  "appearance is 0; a mandatory type needs at least one room")
+    return TypeRule(type=type_name, size=size, prob=prob, neighbours=neighbours,
+                    outside=outside, appearance=appearance, optional=optional, row=row)
+
+
+def _number(text: str, error: RuleTableError) -> float:
+    candidate = text.replace(",", ".") if text.count(",") == 1 and "." not in text else text
+    try:
+        number = float(candidate)
+    except ValueError:
+        raise error from None
+    if not math.isfinite(number):
+        raise error
+    return number
+
+
+def _count(text: str, error: RuleTableError) -> int:
+    number = _number(text, error)
+    if number < 0 or number != int(number):
+        raise error
+    return int(number)
+
+
+def _boolean(text: str, error: RuleTableError) -> bool:
+    lowered = text.lower()
+    if lowered in _TRUE:
+        return True
+    if lowered in _FALSE:
+        return False
+    raise error
+
+
+def _resolve_neighbours(drafts: list[TypeRule], *, file: str) -> tuple[TypeRule, ...]:
+    """Check type names are unique and spell every neighbour as its defining rule does."""
+    defined: dict[str, TypeRule] = {}
+    for rule in drafts:
+        previous = defined.get(rule.type.lower())
+        if previous is not None:
+            raise RuleTableError(
+                f"type '{rule.type}' is already defined in row {previous.row}; use "
+                "'appearance' to allow several rooms of one type", file=file, row=rule.row,
+                column="Type")
+        defined[rule.type.lower()] = rule
+    known = {name: rule.type for name, rule in defined.items()}
+    known.setdefault(DEFAULT_TYPE.lower(), DEFAULT_TYPE)
+    resolved = []
+    for rule in drafts:
+        names = []
+        for name in rule.neighbours:
+            spelled = known.get(name.lower())
+            if spelled is None:
+                close = difflib.get_close_matches(name.lower(), known, n=1, cutoff=0.6)
+                hint = f"; did you mean '{known[close[0]]}'?" if close else ""
+                raise RuleTableError(
+                    f"neighbour type '{name}' is not defined by any rule{hint} "
+                    f"Known types: {', '.join(sorted(known.values()))}", file=file,
+                    row=rule.row, column="Neighbours")
+            names.append(spelled)
+        resolved.append(TypeRule(type=rule.type, size=rule.size, prob=rule.prob,
+                                 neighbours=tuple(dict.fromkeys(names)), outside=rule.outside,
+                                 appearance=rule.appearance, optional=rule.optional,
+                                 row=rule.row))
+    return tuple(resolved)
+
+
+def _check_table(rules: tuple[TypeRule, ...], *, file: str) -> None:
+    outside = [r for r in rules if r.outside]
+    if len(outside) > 1:
+        raise RuleTableError(
+            f"only one rule may set isOutsideConnected (the room with the front door); "
+            f"both {outside[0].type} (row {outside[0].row}) and {outside[1].type} do",
+            file=file, row=outside[1].row, column="isOutsideConnected")
+    if outside and outside[0].optional:
+        raise RuleTableError(
+            f"{outside[0].type} gets the front door (isOutsideConnected) so it must be "
+            "mandatory; set additionRoom to 0", file=file, row=outside[0].row,
+            column="additionRoom")
+    if not any(not r.optional for r in rules):
+        raise RuleTableError("no mandatory rule: set additionRoom to 0 for at least one "
+                             "type (the typing starts from a mandatory rule)", file=file,
+                             column="additionRoom")

@@ -1,0 +1,250 @@
+"""``type_rooms(rules.csv)``: type the rooms of a floor, build its room graph, cut its doors.
+
+DESIGN §7 and thesis §3.3/§5.2. The work is split by concern under
+:mod:`cga.operations.roomtyping`; :func:`type_plan` wires the steps together on a
+:class:`~cga.model.FloorPlan` and :class:`TypeRooms` is the grammar operation around it:
+
+1. find the walls that can take a door (:mod:`~.roomtyping.doors`,
+   :mod:`~.roomtyping.room_graph`): they define which rooms are neighbours;
+2. type the rooms (:mod:`~.roomtyping.assign`, :mod:`~.roomtyping.backtrack`);
+3. join rooms whose rules list each other's type, add the fewest extra doors that make
+   every room reachable from the entry, and place the doors.
+
+Entry and front door. The floor whose rule table has an ``isOutsideConnected`` rule gets
+the front door in that room's outer wall, if it is the ground floor (``index`` 0).
+Upper floors get no front door (it would open into the air); they are entered by the
+stair, which arrives in the room of the ``isOutsideConnected`` type when the floor has
+one, else in the largest room. The entry room is ``room_graph.graph["entry"]``; every
+room is reachable from it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any, Literal
+
+import networkx as nx
+import numpy as np
+
+from cga.errors import DerivationError, NoSolutionError
+from cga.model import OUTSIDE, Diagnostic, Door, FloorPlan, Room, Wall, Window
+from cga.shape import Shape
+
+from .base import Child, Operation, OperationContext, Param
+from .roomtyping.assign import Typing, assign_types
+from .roomtyping.backtrack import RoomSet
+from .roomtyping.doors import (clear_windows, door_centre, door_opening, door_spans,
+                               front_door_site, make_door)
+from .roomtyping.room_graph import (DoorSites, door_sites, reachability_pairs, room_graph,
+                                    rule_pairs)
+from .roomtyping.rules import RuleTable, load_rule_table
+
+__all__ = ["DOOR_POSITIONS", "TypeRooms", "type_plan"]
+
+DOOR_POSITIONS = ("center", "random")
+"""Values of ``door_position``: doors centred in their free stretch of wall, or anywhere
+in it (keeping the margins)."""
+
+_STAGE = "type_rooms"
+
+
+def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
+              units: float = 1.0, strict: bool = False,
+              door_position: Literal["center", "random"] = "random") -> FloorPlan:
+    """Type the rooms of ``plan`` and give it a room graph and doors.
+
+    Parameters
+    ----------
+    plan:
+        An untyped floor (from ``make_floor`` or ``plan_from_rectangles``).
+    table:
+        The typing rules.
+    rng:
+        The only source of randomness (first rule, rooms, door positions).
+    units:
+        Metres per grammar unit; the table's ``Size`` is in grammar units², so it is
+        multiplied by ``units²``.
+    strict:
+        Fail instead of adding doors the rules do not ask for.
+    door_position:
+        ``"center"`` or ``"random"`` (see :data:`DOOR_POSITIONS`).
+
+    Returns
+    -------
+    FloorPlan
+        A copy with typed rooms, door openings in the walls, ``doors``, ``room_graph``
+        (:func:`~.roomtyping.room_graph.room_graph`), fewer ``windows`` if the front door
+        took a window's place, and the typing's messages appended to ``diagnostics``.
+
+    Raises
+    ------
+    NoSolutionError
+        The mandatory rules cannot all be satisfied; a room cannot be reached through
+        any wall; the ground floor has no outer wall that takes a front door; or, with
+        ``strict``, the rules leave a room unreachable.
+    """
+    if door_position not in DOOR_POSITIONS:
+        raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
+    width = plan.settings.door_width
+    sites = door_sites(plan, door_spans(plan), width)
+    ids = tuple(room.id for room in plan.rooms)
+    wants_front_door = table.outside_rule is not None and plan.index == 0
+    rooms = RoomSet(areas=tuple(room.area for room in plan.rooms),
+                    adjacency=sites.adjacency(ids),
+                    entrances=(frozenset(i for i, room in enumerate(ids) if room in sites.outer)
+                               if wants_front_door else None),
+                    ids=ids)
+    typing = assign_types(rooms, table, rng, area_scale=units ** 2)
+    notes = [Diagnostic(n.level, _STAGE, n.message, floor=plan.index, room=n.room)
+             for n in typing.notes]
+    types = dict(zip(ids, typing.types))
+    typed = plan.with_changes(rooms=tuple(replace(r, type=types[r.id]) for r in plan.rooms))
+
+    front_room, entry, entry_notes = _entry(typed, table, typing, sites, wants_front_door)
+    notes += entry_notes
+    pairs = rule_pairs(types, sites, table)
+    extra = reachability_pairs(typed.rooms, pairs, sites, entry=entry)
+    if extra and strict:
+        raise _unreachable_error(typed, pairs, sites, table, entry)
+
+    walls = {wall.id: wall for wall in typed.walls}
+    windows: tuple[Window, ...] = typed.windows
+    doors: list[Door] = []
+    if front_room is not None:
+        wall, interval, replaces = front_door_site(sites.outer[front_room], width)
+        centre = door_centre(interval, width, rng, door_position)
+        if replaces:
+            walls[wall.id], windows, removed = clear_windows(
+                walls[wall.id], windows, centre - width / 2, centre + width / 2)
+            notes.append(Diagnostic("warning", _STAGE, (
+                f"the front door replaces {len(removed)} window{'s' if len(removed) != 1 else ''} "
+                f"on wall {wall.id}: no stretch between windows of room {front_room} takes a "
+                f"{width:.2f} m door"), floor=plan.index, room=front_room))
+        doors.append(_add_door(len(doors), walls, wall.id, centre, (front_room, OUTSIDE),
+                               typed, "front"))
+    for reason, chosen in (("rule", pairs), ("reachability", extra)):
+        for pair in chosen:
+            wall, interval = sites.inner[pair][0]
+            centre = door_centre(interval, width, rng, door_position)
+            doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, reason))
+            if reason == "reachability":
+                notes.append(_reachability_note(typed, pair, table))
+    result = typed.with_changes(walls=tuple(walls[w.id] for w in typed.walls),
+                                windows=windows, doors=tuple(doors),
+                                diagnostics=plan.diagnostics + tuple(notes))
+    return result.with_changes(room_graph=room_graph(result, doors, entry=entry))
+
+
+def _add_door(door_id: int, walls: dict[int, Wall], wall_id: int, centre: float,
+              rooms: tuple[int, int], plan: FloorPlan,
+              reason: Literal["rule", "reachability", "front"]) -> Door:
+    door = make_door(door_id, walls[wall_id], centre, rooms, plan, reason=reason)
+    walls[wall_id] = walls[wall_id].with_opening(door_opening(door, plan))
+    return door
+
+
+def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, sites: DoorSites,
+           wants_front_door: bool) -> tuple[int | None, int, list[Diagnostic]]:
+    """(front-door room or None, entry room, notes): see the module notes."""
+    outside = table.outside_rule
+    placed = None
+    if outside is not None and outside.type in typing.mandatory:
+        placed = plan.rooms[typing.mandatory[outside.type]].id
+    by_size = sorted(plan.rooms, key=lambda r: (-r.area, r.id))
+    notes = []
+    if wants_front_door:
+        if placed is not None:
+            return placed, placed, notes
+        candidates = [r for r in by_size if r.id in sites.outer]
+        if not candidates:
+            raise NoSolutionError(
+                f"floor {plan.index} has no outer wall long enough for a "
+                f"{plan.settings.door_width:.2f} m front door and its margins")
+        room = candidates[0]
+        notes.append(Diagnostic("warning", _STAGE, (
+            f"no {outside.type} on this floor, so the front door goes into the largest room "
+            f"with an outer wall for it: room {room.id} ({room.type})"),
+            floor=plan.index, room=room.id))
+        return room.id, room.id, notes
+    entry = placed if placed is not None else by_size[0].id
+    if outside is None and plan.index == 0:
+        notes.append(Diagnostic("warning", _STAGE, (
+            f"no rule of {table.file} sets isOutsideConnected, so the ground floor gets no "
+            f"front door; room {entry} is its entry"), floor=plan.index, room=entry))
+    else:
+        notes.append(Diagnostic("info", _STAGE, (
+            f"upper floor: no front door; the stair arrives in room {entry} "
+            f"({plan.room(entry).type})"), floor=plan.index, room=entry))
+    return None, entry, notes
+
+
+def _describe(room: Room) -> str:
+    return f"room {room.id} ({room.type})"
+
+
+def _lists(table: RuleTable, type_name: str | None) -> str:
+    rule = table.rule_for(type_name) if type_name else None
+    return ", ".join(rule.neighbours) if rule is not None else "nothing (no rule)"
+
+
+def _reachability_note(plan: FloorPlan, pair: tuple[int, int], table: RuleTable) -> Diagnostic:
+    a, b = (plan.room(r) for r in pair)
+    return Diagnostic("warning", _STAGE, (
+        f"added a door between {_describe(a)} and {_describe(b)} so every room can be "
+        f"reached: no rule joins them ({a.type} lists {_lists(table, a.type)}; {b.type} "
+        f"lists {_lists(table, b.type)})"), floor=plan.index, room=a.id)
+
+
+def _unreachable_error(plan: FloorPlan, pairs: list[tuple[int, int]], sites: DoorSites,
+                       table: RuleTable, entry: int) -> NoSolutionError:
+    graph = nx.Graph(pairs)
+    graph.add_nodes_from(r.id for r in plan.rooms)
+    reached = nx.node_connected_component(graph, entry)
+    reasons = []
+    for room in plan.rooms:
+        if room.id in reached:
+            continue
+        beside = [plan.room(sum(p) - room.id) for p in sites.inner if room.id in p]
+        reasons.append(f"{_describe(room)} adjoins {', '.join(map(_describe, beside))}; "
+                       f"{room.type} lists {_lists(table, room.type)} and none of them lists "
+                       f"{room.type}")
+    return NoSolutionError(
+        f"strict: the doors the rules of {table.file} allow do not reach every room of floor "
+        f"{plan.index} from {_describe(plan.room(entry))}", reasons)
+
+
+class TypeRooms(Operation):
+    """Type the rooms of a floor, build the room graph and cut the doors (DESIGN §7)."""
+
+    name = "type_rooms"
+    params = (
+        Param("rules", "path", doc="typing rule table (CSV, thesis format)"),
+        Param("strict", "bool", default=False, keyword_only=True,
+              doc="fail instead of adding doors the rules do not ask for"),
+        Param("door_position", "string", default="random", keyword_only=True,
+              doc="'center' or 'random': where a door sits in its free stretch of wall"),
+    )
+    doc = ('type_rooms("rules.csv", strict=false, door_position="random"): type the rooms, '
+           "build the room graph, cut the doors")
+
+    def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        if shape.plan is None:
+            raise DerivationError("type_rooms needs a floor made by make_floor",
+                                  hint="apply make_floor(...) to this shape first")
+        position = str(args["door_position"]).lower()
+        if position not in DOOR_POSITIONS:
+            raise DerivationError(f"door_position must be one of "
+                                  f"{', '.join(repr(p) for p in DOOR_POSITIONS)}, got "
+                                  f"{args['door_position']!r}")
+        table = _cached_table(ctx.resolve(args["rules"], "rules"), ctx.cache)
+        plan = type_plan(shape.plan, table, ctx.rng, units=ctx.units,
+                         strict=bool(args["strict"]) or ctx.strict, door_position=position)
+        return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=plan)]
+
+
+def _cached_table(path: Any, cache: dict[str, Any]) -> RuleTable:
+    """Parse each table once per build (every floor of a building usually shares one)."""
+    key = f"type_rooms:{path}"
+    if key not in cache:
+        cache[key] = load_rule_table(path)
+    return cache[key]
