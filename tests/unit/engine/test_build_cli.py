@@ -1,0 +1,209 @@
+"""build(), the summary, `cga build` and `cga check` in-process (the e2e tests use a subprocess)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from cga import build as build_module
+from cga.build import build
+from cga.cli import main
+from cga.errors import (DerivationError, GrammarSyntaxError, NoSolutionError,
+                        ResourceNotFoundError, UsageError)
+from cga.export import EXPORTERS
+from cga.summary import summary_dict
+from cga.validate import check_file
+
+GRAMMAR = """\
+Lot: rectangle(12, 8)
+Variables:
+  h = 6;
+Rules:
+Lot --> extrude(h) Body
+Body --> repeated_split("y", 3){ Ground, Upper }
+Ground --> component_split("side_faces"){ Facade }
+"""
+
+
+@pytest.fixture
+def grammar_file(tmp_path):
+    path = tmp_path / "block.grammar"
+    path.write_text(GRAMMAR)
+    return path
+
+
+def test_build_writes_files_and_times_stages(grammar_file, tmp_path):
+    out = tmp_path / "out"
+    scene = build(grammar_file, seed=2, out_dir=out, formats=("glb", "json"), quiet=True)
+    assert scene.name == "block" and scene.seed == 2 and scene.source == grammar_file
+    assert [t.symbol for t in scene.terminals] == ["Facade"] * 4 + ["Upper"]
+    assert sorted(p.name for p in out.iterdir()) == ["block.glb", "block.scene.json"]
+    assert {"parse", "derive", "extrude", "repeated_split", "component_split", "meshing",
+            "export"} <= set(scene.timings)
+    assert "physics" not in scene.timings  # no floors: checks do not run
+
+
+def test_build_lot_option_overrides_grammar(grammar_file):
+    scene = build(grammar_file, lot="20x5", formats=(), quiet=True)
+    assert scene.terminals[-1].geometry.footprint.bounds == (0, 0, 20, 5)
+
+
+def test_failed_export_leaves_no_output(grammar_file, tmp_path, monkeypatch):
+    out = tmp_path / "out"
+
+    def broken(scene, nodes, out_dir, name):
+        (out_dir / f"{name}.broken").write_text("half")
+        raise UsageError("exporter failed")
+
+    monkeypatch.setitem(EXPORTERS, "broken", broken)
+    with pytest.raises(UsageError):
+        build(grammar_file, out_dir=out, formats=("glb", "broken"), quiet=True)
+    assert not out.exists() or not any(out.iterdir())
+    assert [p.name for p in tmp_path.iterdir() if p.name != "block.grammar"] in ([], ["out"])
+
+
+def test_strict_fails_on_a_failed_check_and_writes_nothing(grammar_file, tmp_path, monkeypatch):
+    def failing(scene, nodes, robot_radius, progress):
+        scene.checks["physics"] = {"passed": False, "summary": "physics: 0/1 items at rest"}
+
+    monkeypatch.setattr(build_module, "_run_checks", failing)
+    scene = build(grammar_file, out_dir=tmp_path / "lenient", quiet=True)
+    assert scene.checks["physics"]["passed"] is False
+    with pytest.raises(NoSolutionError, match="physics: 0/1 items at rest"):
+        build(grammar_file, out_dir=tmp_path / "strict", strict=True, quiet=True)
+    assert not (tmp_path / "strict").exists()
+
+
+def test_bad_options(grammar_file):
+    with pytest.raises(UsageError, match="unknown export format nope; available: glb"):
+        build(grammar_file, formats=("nope",))
+    with pytest.raises(UsageError, match="--seed"):
+        build(grammar_file, seed=-1)
+    with pytest.raises(UsageError, match="--units"):
+        build(grammar_file, units=0)
+    with pytest.raises(ResourceNotFoundError, match="grammar not found"):
+        build(grammar_file.with_name("missing.grammar"))
+
+
+def test_source_errors_carry_the_grammar_text(tmp_path):
+    path = tmp_path / "bad.grammar"
+    path.write_text("Rules:\nLot --> extrude(h) Body\n")
+    with pytest.raises(DerivationError) as info:
+        build(path, formats=(), quiet=True)
+    text = str(info.value)
+    assert text.startswith(f"{path}:2:17: error: undefined variable 'h'")
+    assert "   2 | Lot --> extrude(h) Body" in text and "^" in text
+
+
+def test_summary_dict(grammar_file):
+    data = summary_dict(build(grammar_file, seed=1, formats=(), quiet=True), out_dir="o")
+    assert data["name"] == "block" and data["seed"] == 1 and data["floors"] == []
+    assert data["shapes"] == 5 and data["out_dir"] == "o"
+    assert "derive" in data["timings"]
+    json.dumps(data)
+
+
+def test_summary_of_a_floor_plan():
+    from cga.operations.floorplan.rectangles import plan_from_rectangles
+    from cga.scene import Scene
+    from cga.shape import Mass, Shape
+
+    plan = plan_from_rectangles([(0, 0, 6, 10), (6, 0, 14, 10)])
+    mass = Mass(plan.footprint, 0, 3)
+    shape = Shape(symbol="F", path=("F",), scope=mass.scope(), geometry=mass, plan=plan)
+    data = summary_dict(Scene(name="p", seed=0, units=1, terminals=[shape]))
+    [floor] = data["floors"]
+    assert [(r["id"], r["type"], r["area_m2"]) for r in floor["rooms"]] == [
+        (0, None, 60.0), (1, None, 80.0)]
+    assert floor["area_m2"] == 140.0 and data["shapes"] == 0
+
+
+def test_cli_build_prints_summary_and_json(grammar_file, tmp_path, capsys):
+    assert main(["build", str(grammar_file), "--out", str(tmp_path / "o"), "--seed", "3"]) == 0
+    out = capsys.readouterr().out
+    assert "block" in out and "seed 3" in out and "derive" in out
+    assert (tmp_path / "o" / "block.glb").is_file()
+    assert main(["build", str(grammar_file), "--out", str(tmp_path / "o"), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["name"] == "block" and data["out_dir"] == str(tmp_path / "o")
+    assert main(["build", str(grammar_file), "--out", str(tmp_path / "o"), "--quiet"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err == ""
+
+
+def test_cli_errors_exit_2_without_traceback(tmp_path, capsys):
+    path = tmp_path / "typo.grammar"
+    path.write_text("Rules:\nLot --> extrud(3) Body\n")
+    assert main(["build", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert f"{path}:2:9: error: unknown operation 'extrud'" in err
+    assert "did you mean 'extrude'?" in err and "Traceback" not in err
+    assert main(["build", str(tmp_path / "missing.grammar")]) == 2
+    assert "grammar not found" in capsys.readouterr().err
+    assert main(["build", str(path), "--lot", "banana"]) == 2
+    assert "expected one of" in capsys.readouterr().err
+
+
+def test_cli_check(grammar_file, tmp_path, capsys):
+    assert main(["check", str(grammar_file)]) == 0
+    assert capsys.readouterr().out.strip() == f"{grammar_file}: ok"
+    bad = tmp_path / "bad.grammar"
+    bad.write_text("Rules:\nLot --> extrude(3) {A, B}\n")
+    assert main(["check", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert f"{bad}:2:" in err and "extrude takes 1 successor, got 2" in err
+    assert "1 problem" in err
+
+
+# -- static checks --------------------------------------------------------------------------
+
+def test_check_reports_every_problem_in_every_branch(tmp_path):
+    path = tmp_path / "many.grammar"
+    path.write_text(
+        "Variables:\n"
+        "  height = 6;\n"
+        "Rules:\n"
+        "Lot --> extrude(height) Body\n"
+        "Body --> 50% : repeated_split(\"y\", heigth){A, B}\n"
+        "       | else : split(\"q\"){ ~1 : A }\n"
+        "A --> type_rooms(\"D:\\\\Rooms\\\\NoSuchTable\") T\n"
+        "B --> case scope.sx > 10 : extrude(\"tall\") C | else : comp_split(\"top\"){R}\n")
+    problems = check_file(path)
+    texts = [str(p) for p in problems]
+    assert len(problems) == 5, texts
+    assert any(f"{path}:5:" in t and "undefined variable 'heigth'" in t and "did you mean 'height'?"
+               in t for t in texts)
+    assert any(f"{path}:6:" in t and "argument 'axis' (axis) must be one of" in t for t in texts)
+    assert any(f"{path}:7:" in t and "rule table not found: D:\\\\Rooms\\\\NoSuchTable" in t
+               for t in texts)
+    assert any(f"{path}:8:" in t and "expected a number, got the string \"tall\"" in t
+               for t in texts)
+    assert any(f"{path}:8:" in t and "unknown operation 'comp_split'" in t for t in texts)
+    assert all("^" in t for t in texts)  # excerpts attached
+
+
+def test_check_reports_syntax_errors_and_lot_problems(tmp_path):
+    syntax = tmp_path / "syntax.grammar"
+    syntax.write_text("Rules:\nLot --> extrude(3 Body\n")
+    [problem] = check_file(syntax)
+    assert isinstance(problem, GrammarSyntaxError) and f"{syntax}:2:" in str(problem)
+    lot = tmp_path / "lot.grammar"
+    lot.write_text("Lot: polygon((0,0),(4,4),(4,0),(0,4))\nRules:\nLot --> extrude(3) B\n")
+    [problem] = check_file(lot)
+    assert f"{lot}:1:" in str(problem) and "not simple" in str(problem)
+
+
+def test_check_accepts_shape_dependent_values(tmp_path):
+    path = tmp_path / "dyn.grammar"
+    path.write_text("Variables:\n  r = [1;2];\nRules:\n"
+                    "Lot --> extrude(scope.sx * r) B\n"
+                    "B --> split(\"x\"){ ~scope.sx / 3 : C }*\n")
+    assert check_file(path) == []
+
+
+def test_demo_massing_checks_clean():
+    from pathlib import Path
+
+    demo = Path(__file__).resolve().parents[3] / "demos" / "massing.grammar"
+    assert check_file(demo) == []
