@@ -10,6 +10,8 @@ part each. Floor 1 has a bed whose centre is at world x = 2, z = 3 (the frames t
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
 
 import networkx as nx
 import numpy as np
@@ -22,6 +24,9 @@ from cga.model import (OUTSIDE, Door, FloorPlan, FloorSettings, FurnitureItem, O
                        Wall, Window)
 from cga.scene import Scene, SceneNode
 from cga.shape import Mass, Shape
+
+# the independent validators in tests/support (ros_map_checks)
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "support"))
 
 STOREY = 3.0
 SETTINGS = FloorSettings()
