@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import manifold3d
 import numpy as np
 import shapely
+import trimesh
 from PIL import Image, ImageDraw
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
@@ -49,6 +50,10 @@ __all__ = [
 _TO_PLAN = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, -1.0, 0.0, 0.0]])
 """World (x, y, z) → (x, z, −y): a proper rotation whose xy plane is the plan (x, z), so a
 manifold3d projection along its z axis is the view from above."""
+
+
+_SHEET = 1e-3
+"""Half-thickness (m) given to the triangles of open meshes, whose shadow may be a line."""
 
 
 @dataclass(frozen=True)
@@ -148,22 +153,17 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     ``y1`` (an empty geometry when none of it is).
 
     A furniture node with convex parts is the union of its parts; other meshes are used
-    whole. A mesh that is not a watertight solid is replaced by its convex hull, which
-    over-approximates it.
+    whole. A mesh that is not a watertight solid (an open surface) is taken triangle by
+    triangle: the shadow of its triangles clipped to the band, thickened by 1 mm so that
+    a vertical sheet still blocks the cells it crosses.
     """
     lo, hi = node.mesh.bounds
     if hi[1] <= y0 or lo[1] >= y1:
         return Polygon()
     pieces = [m for m in (node.parts or (node.mesh,)) if len(m.faces)]
-    solids = []
-    for mesh in pieces:
-        solid = as_manifold(mesh)
-        if solid is None:
-            solid = as_manifold(mesh.convex_hull)
-        if solid is not None:
-            solids.append(solid)
-    if not solids:
-        return Polygon()
+    solids = [as_manifold(mesh) for mesh in pieces]
+    if not solids or any(s is None for s in solids):
+        return _sheet_footprint(node.mesh, y0, y1)
     solid = solids[0] if len(solids) == 1 else manifold3d.Manifold.batch_boolean(
         solids, manifold3d.OpType.Add)
     band = (solid.transform(_TO_PLAN)
@@ -171,11 +171,42 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
             .trim_by_plane((0.0, 0.0, -1.0), y0))
     if band.is_empty():
         return Polygon()
-    rings = [Polygon(r) for r in band.project().to_polygons() if len(r) >= 3]
-    rings = [r for r in rings if r.is_valid and r.area > 0]
-    if not rings:
+    polygons = [_polygon(piece.to_polygons()) for piece in band.project().decompose()]
+    polygons = [p for p in polygons if not p.is_empty]
+    if not polygons:
         return Polygon()
-    return shapely.symmetric_difference_all(rings)
+    return polygons[0] if len(polygons) == 1 else shapely.MultiPolygon(polygons)
+
+
+def _sheet_footprint(mesh: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:
+    """The shadow of an open mesh's triangles between heights ``y0`` and ``y1``."""
+    part = trimesh.intersections.slice_mesh_plane(mesh, (0.0, 1.0, 0.0), (0.0, y0, 0.0))
+    if len(part.faces):
+        part = trimesh.intersections.slice_mesh_plane(part, (0.0, -1.0, 0.0), (0.0, y1, 0.0))
+    if not len(part.faces):
+        return Polygon()
+    triangles = shapely.polygons(np.asarray(part.triangles)[:, :, [0, 2]])
+    return shapely.union_all(shapely.buffer(triangles, _SHEET))
+
+
+def _polygon(rings: Sequence[np.ndarray]) -> Polygon:
+    """One connected piece of a cross-section as a polygon: manifold3d (Clipper2) gives its
+    outer ring counter-clockwise and its holes clockwise."""
+    outer: np.ndarray | None = None
+    holes = []
+    for ring in rings:
+        if len(ring) < 3:
+            continue
+        x, y = ring[:, 0], ring[:, 1]
+        area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+        if area > 0:
+            outer = ring
+        elif area < 0:
+            holes.append(ring)
+    if outer is None:
+        return Polygon()
+    polygon = Polygon(outer, holes)
+    return polygon if polygon.is_valid else polygon.buffer(0)
 
 
 def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: float = 0.05,

@@ -1,0 +1,157 @@
+"""The physics check catches overlaps, floating and toppling items, and passes items at rest."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import trimesh
+
+from cga.checks import check_physics
+from cga.scene import SceneNode
+
+pytestmark = pytest.mark.physics
+
+
+@pytest.fixture
+def room(kit, two_rooms):
+    return two_rooms, kit.structure(two_rooms)
+
+
+def _item(report, name):
+    return next(i for i in report.items if i.name == name)
+
+
+def test_item_at_rest_passes(kit, room):
+    plan, nodes = room
+    table = kit.box_item("table", (1.2, 0.75, 0.8), (2.0, 2.0))
+    report = check_physics(kit.scene_of(plan), nodes + [table])
+    result = _item(report, "table")
+    assert report.passed, report.summary()
+    assert result.penetration < 0.001
+    assert result.displacement < 0.005
+    assert result.rotation_deg < 0.5
+    assert not result.fell_through and not result.tipped
+
+
+def test_item_against_a_wall_face_passes(kit, room):
+    plan, nodes = room
+    # Room 0's wall at x = 0 occupies x in [0, 0.2]; the wardrobe's back touches x = 0.2.
+    wardrobe = kit.box_item("wardrobe", (0.6, 2.0, 1.0), (0.5, 2.0))
+    report = check_physics(kit.scene_of(plan), nodes + [wardrobe])
+    assert report.passed, report.summary()
+    assert _item(report, "wardrobe").penetration < 0.001
+
+
+def test_item_intersecting_a_wall_is_detected(kit, room):
+    plan, nodes = room
+    # 0.15 m of the wardrobe's depth lies inside the wall solid x in [0, 0.2].
+    wardrobe = kit.box_item("wardrobe", (0.6, 2.0, 1.0), (0.35, 2.0))
+    report = check_physics(kit.scene_of(plan), nodes + [wardrobe])
+    result = _item(report, "wardrobe")
+    assert not report.passed
+    assert result.penetration == pytest.approx(0.15, abs=0.005)
+    assert result.penetrating is not None and result.penetrating.startswith("floor0/wall")
+    assert any("overlaps" in p for p in result.problems)
+
+
+def test_floating_item_is_detected(kit, room):
+    plan, nodes = room
+    chair = kit.box_item("chair", (0.5, 0.9, 0.5), (2.0, 2.0), lift=0.5)
+    report = check_physics(kit.scene_of(plan), nodes + [chair])
+    result = _item(report, "chair")
+    assert not report.passed
+    assert result.penetration == 0.0
+    assert result.displacement == pytest.approx(0.5, abs=0.01)
+    assert not result.fell_through
+    assert any(p.startswith("moved") for p in result.problems)
+
+
+def test_overlapping_items_both_report_the_other(kit, room):
+    plan, nodes = room
+    a = kit.box_item("a", (1.0, 0.8, 1.0), (2.0, 2.0))
+    b = kit.box_item("b", (1.0, 0.8, 1.0), (2.9, 2.0))  # 0.1 m overlap along x
+    report = check_physics(kit.scene_of(plan), nodes + [a, b])
+    assert _item(report, "a").penetrating == b.path
+    assert _item(report, "b").penetrating == a.path
+    assert _item(report, "a").penetration == pytest.approx(0.1, abs=0.005)
+
+
+def test_item_over_a_hole_falls(kit, room):
+    plan, nodes = room
+    lamp = kit.box_item("lamp", (0.3, 1.5, 0.3), (20.0, 20.0))  # beyond the slab
+    report = check_physics(kit.scene_of(plan), nodes + [lamp])
+    result = _item(report, "lamp")
+    assert result.fell_through and not report.passed
+
+
+def test_top_heavy_item_tips_over(kit, room):
+    plan, nodes = room
+    post = kit.box_mesh((0.1, 1.5, 0.1), (2.0, 0.2 + 0.75, 2.0))
+    arm = kit.box_mesh((1.2, 0.1, 0.3), (2.6, 0.2 + 1.45, 2.0))
+    node = SceneNode("floor0/room0/furniture/sign", "furniture",
+                     trimesh.util.concatenate([post, arm]),
+                     extras={"name": "sign", "model": "sign", "room": 0, "density": 500.0},
+                     static=False, parts=(post, arm))
+    report = check_physics(kit.scene_of(plan), nodes + [node])
+    result = _item(report, "sign")
+    assert result.tipped and result.rotation_deg > 30
+    assert not report.passed
+
+
+def test_static_furniture_is_not_simulated(kit, room):
+    plan, nodes = room
+    rug = kit.box_item("rug", (2.0, 0.02, 1.5), (2.0, 2.0), static=True)
+    sofa = kit.box_item("sofa", (1.8, 0.8, 0.9), (2.0, 2.0))  # stands on (in) the rug
+    report = check_physics(kit.scene_of(plan), nodes + [rug, sofa])
+    assert [i.name for i in report.items] == ["sofa"]
+    assert report.ignored == (rug.path,)
+    assert report.passed, report.summary()
+
+
+def test_thresholds_are_honoured(kit, room):
+    plan, nodes = room
+    chair = kit.box_item("chair", (0.5, 0.9, 0.5), (2.0, 2.0), lift=0.05)
+    strict = check_physics(kit.scene_of(plan), nodes + [chair])
+    lenient = check_physics(kit.scene_of(plan), nodes + [chair], move_tol=0.1)
+    assert not strict.passed and lenient.passed
+
+
+def test_settling_stops_early_once_everything_rests(kit, room):
+    plan, nodes = room
+    table = kit.box_item("table", (1.2, 0.75, 0.8), (2.0, 2.0))
+    report = check_physics(kit.scene_of(plan), nodes + [table])
+    assert report.simulated_seconds < report.settle_seconds
+
+
+def test_report_is_json_ready(kit, room):
+    plan, nodes = room
+    chair = kit.box_item("chair", (0.5, 0.9, 0.5), (2.0, 2.0), lift=0.5)
+    data = json.loads(json.dumps(check_physics(kit.scene_of(plan), nodes + [chair]).to_dict()))
+    assert data["passed"] is False
+    assert data["failed_count"] == 1
+    assert data["items"][0]["path"] == chair.path
+    assert data["thresholds"] == {"penetration_m": 0.005, "displacement_m": 0.01,
+                                  "rotation_deg": 2.0}
+
+
+def test_bad_threshold_is_rejected(kit, room):
+    plan, nodes = room
+    with pytest.raises(ValueError, match="settle_seconds"):
+        check_physics(kit.scene_of(plan), nodes, settle_seconds=0)
+
+
+def test_concave_user_model_is_decomposed(kit, room, tmp_path):
+    plan, nodes = room
+    # An L-shaped desk as one concave mesh whose model is flagged as not convex-part.
+    top = kit.box_mesh((1.6, 0.75, 0.6), (2.0, 0.2 + 0.375, 1.5))
+    wing = kit.box_mesh((0.6, 0.75, 1.0), (2.5, 0.2 + 0.375, 2.3))
+    desk = trimesh.boolean.union([top, wing], engine="manifold")
+    assert not desk.is_convex
+    node = SceneNode("floor0/room0/furniture/desk", "furniture", desk,
+                     extras={"name": "desk", "model": "desk", "room": 0, "mass": 40.0,
+                             "convex_parts": False},
+                     static=False, parts=(desk,))
+    report = check_physics(kit.scene_of(plan), nodes + [node], cache_dir=tmp_path)
+    assert report.passed, report.summary()
+    assert len(list(tmp_path.glob("*.obj"))) == 1
