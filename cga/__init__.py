@@ -14,3 +14,36 @@ if (_checkout_root / "operations" / "__init__.py").is_file() and not (
     __path__.append(str(_checkout_root))  # type: ignore[name-defined]
 
 __version__ = "0.1.0"
+
+# The public Python API. Names are imported on first use, so `import cga` (and the `cga`
+# command's startup) does not load shapely, trimesh or pybullet. The pipeline itself is
+# `cga.build.build` (a module attribute of the same name cannot also be the function).
+_PUBLIC = {
+    "parse": "cga.parser",
+    "parse_file": "cga.parser",
+    "derive": "cga.evaluator",
+    "Evaluator": "cga.evaluator",
+    "check_file": "cga.validate",
+    "check_grammar": "cga.validate",
+    "parse_lot": "cga.lot",
+    "scene_nodes": "cga.meshing",
+    "Scene": "cga.scene",
+    "SceneNode": "cga.scene",
+}
+
+__all__ = ["__version__", *_PUBLIC]
+
+
+def __getattr__(name: str):
+    """Import a public name from its module the first time it is used (PEP 562)."""
+    if name in _PUBLIC:
+        import importlib
+
+        value = getattr(importlib.import_module(_PUBLIC[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'cga' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_PUBLIC))
