@@ -97,9 +97,10 @@ def print_summary(scene: Scene, *, out_dir: str | Path | None = None, console: A
                   f"({len(data['floors'])} floor{'s' * (len(data['floors']) != 1)}, "
                   f"{data['shapes']} other shape{'s' * (data['shapes'] != 1)})")
     for floor in data["floors"]:
-        table = Table(title=f"floor {floor['index']}: {floor['area_m2']:.1f} m², "
-                            f"{floor['doors']} doors, {floor['windows']} windows, "
-                            f"{floor['items']} items", title_justify="left")
+        console.print(f"[bold]floor {floor['index']}[/bold]: {floor['area_m2']:.1f} m², "
+                      f"{floor['doors']} doors, {floor['windows']} windows, "
+                      f"{floor['items']} items", highlight=False)
+        table = Table()
         for column, justify in (("room", "right"), ("type", "left"), ("area m²", "right"),
                                 ("doors", "right"), ("items", "right")):
             table.add_column(column, justify=justify)
