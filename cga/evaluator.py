@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import time
 from collections import defaultdict
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -42,7 +42,7 @@ from shapely.geometry import Polygon
 
 from . import ast
 from .binding import bind_arguments
-from .errors import DerivationError, SourceError, Span
+from .errors import DerivationError, ResourceNotFoundError, SourceError, Span
 from .expressions import UNKNOWN, Namespace, Value, describe, evaluate, shape_attributes
 from .lot import DEFAULT_LOT, lot_from_call, rectangle
 from .model import Diagnostic
@@ -425,8 +425,7 @@ class Evaluator:
             args["parts"] = self._split_parts(step, ns)
             args["repeat"] = step.repeat
         ctx = OperationContext(
-            rng=rng, units=self.units,
-            resolve=lambda path, kind="rules": resolve_resource(path, kind, base_dir=self.base_dir),
+            rng=rng, units=self.units, resolve=self._resolver(call),
             report=diagnostics.append, span=call.span, successor_count=len(successors),
             cache=cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir)
         started = time.perf_counter()
@@ -443,6 +442,18 @@ class Evaluator:
                 raise IndexError(f"operation {operation.name} produced a child for successor "
                                  f"{child.successor}, but the step has {len(successors)}")
         return [(successors[child.successor], child) for child in children]
+
+    def _resolver(self, call: ast.OpCall) -> Callable[..., Path]:
+        """``ctx.resolve`` for one call: a missing file is reported at the argument that
+        names it (or the call)."""
+        def resolve(path: str | Path, kind: str = "rules") -> Path:
+            try:
+                return resolve_resource(path, kind, base_dir=self.base_dir)
+            except ResourceNotFoundError as error:
+                span = next((a.span for a in call.args if isinstance(a.value, ast.String)
+                             and a.value.value == str(path)), None)
+                raise DerivationError(str(error), span or call.span) from None
+        return resolve
 
     def _operation(self, call: ast.OpCall) -> Operation:
         try:

@@ -163,11 +163,12 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
     folders = [(base, "the grammar's folder")]
     if shipped is not None:
         folders.append((shipped, f"shipped {spec.description}s"))
+    names = ", ".join(str(v) for v in variants if len(v.parts) == 1)
+    how = (f"as written, then by name: {names} (longest trailing path first)"
+           if len(parts) > 1 else f"by name: {names}")
+    searched.extend(f"{folder} ({label}): {how}" for folder, label in folders)
     for group in (whole, tails):
-        for folder, label in folders:
-            if not group:
-                continue
-            searched.append(f"{folder} ({label}; tried {', '.join(str(v) for v in group)})")
+        for folder, _ in folders:
             for variant in group:
                 found = _match_in(folder, variant)
                 if found is not None:

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from shapely.geometry import box
 
-from cga.errors import DerivationError, ResourceNotFoundError
+from cga.errors import DerivationError
 from cga.evaluator import Evaluator, derive
 from cga.operations import OperationRegistry
 from cga.operations.base import Child, Operation, Param
@@ -343,10 +343,12 @@ def test_resolve_in_context_finds_files_next_to_grammar(g, tmp_path):
                         file=str(tmp_path / "house.grammar"))
     derive(grammar, LOT, operations=registry(Resolve()))
     assert seen["path"] == tmp_path / "types.csv"
-    missing = g.grammar(g.rule("Lot", g.step(g.op("resolve", "nope.csv"), "B")),
-                        file=str(tmp_path / "house.grammar"))
-    with pytest.raises(ResourceNotFoundError):
+    missing = g.grammar(g.rule("Lot", g.step(g.op("resolve", g.arg("nope.csv", at=(4, 17))),
+                                             "B")), file=str(tmp_path / "house.grammar"))
+    with pytest.raises(DerivationError) as info:
         derive(missing, LOT, operations=registry(Resolve()))
+    assert str(info.value).startswith("test.grammar:4:17: error: rule table not found: nope.csv")
+    assert str(tmp_path / "nope.csv") in str(info.value)
 
 
 def test_registry_is_copied(g):
