@@ -187,10 +187,10 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
 
             with progress.stage("parse", f"parsing {path.name}…"):
                 grammar = parse(text, str(path))
-            if isinstance(lot, str):
-                from .lot import parse_lot
+            if lot is not None:
+                from .lot import parse_lot, validate_lot
 
-                lot = parse_lot(lot)
+                lot = parse_lot(lot) if isinstance(lot, str) else validate_lot(lot, "lot")
             with progress.stage("derive", "deriving the shape tree…"):
                 derivation = Evaluator(grammar, seed=seed, units=units, operations=operations,
                                        max_depth=max_depth, base_dir=path.parent,

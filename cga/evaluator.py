@@ -288,6 +288,16 @@ def _cycle(path: tuple[str, ...]) -> str:
     return " → ".join(names[start:]) + " …"
 
 
+@dataclass
+class _Run:
+    """The state of one derivation, shared by all rule applications."""
+
+    variables: Mapping[str, Value]
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    timings: dict[str, float] = field(default_factory=lambda: defaultdict(float))
+    cache: dict[str, Any] = field(default_factory=dict)
+
+
 class Evaluator:
     """Derives a grammar's shape tree.
 
@@ -347,9 +357,7 @@ class Evaluator:
         symbol = start_symbol(self.grammar)
         mass = Mass(footprint=footprint, base=0.0, height=0.0)
         root = DerivedShape(Shape(symbol=symbol, path=(symbol,), scope=mass.scope(), geometry=mass))
-        diagnostics: list[Diagnostic] = []
-        timings: dict[str, float] = defaultdict(float)
-        cache: dict[str, Any] = {}
+        run = _Run(variables=variables)
         terminals: list[Shape] = []
         stack = [root]
         while stack:
@@ -359,12 +367,11 @@ class Evaluator:
                 terminals.append(node.shape)
                 continue
             node.rule = rule
-            node.children = self._apply_rule(node.shape, rule, variables, diagnostics,
-                                             timings, cache)
+            node.children = self._apply_rule(node.shape, rule, run)
             stack.extend(reversed(node.children))
         return Derivation(root=root, terminals=terminals, variables=variables,
-                          units=self.units, lot=footprint, diagnostics=diagnostics,
-                          timings=dict(timings))
+                          units=self.units, lot=footprint, diagnostics=run.diagnostics,
+                          timings=dict(run.timings))
 
     # -- derivation steps ------------------------------------------------------------
 
@@ -382,9 +389,7 @@ class Evaluator:
                                       shape.attrs, self.units)
         return Namespace(variables=variables, attributes=attributes, rng=rng)
 
-    def _apply_rule(self, shape: Shape, rule: ast.Rule, variables: Mapping[str, Value],
-                    diagnostics: list[Diagnostic], timings: dict[str, float],
-                    cache: dict[str, Any]) -> list[DerivedShape]:
+    def _apply_rule(self, shape: Shape, rule: ast.Rule, run: _Run) -> list[DerivedShape]:
         if len(shape.path) > self.max_depth:
             raise DerivationError(
                 f"recursion deeper than {self.max_depth} at rule {rule.predecessor.name} "
@@ -392,12 +397,11 @@ class Evaluator:
                 hint="guard the recursion with a case that stops it (e.g. `case scope.sy > 1 "
                      ": ... | else : ...`) or raise the depth limit")
         rng = shape_rng(self.seed, shape.path)
-        ns = self._namespace(shape, variables, rng)
+        ns = self._namespace(shape, run.variables, rng)
         sequence = choose_sequence(rule.body, ns, rng, rule.predecessor.name)
         produced: list[tuple[ast.Symbol, Child]] = []
         for step in sequence.steps:
-            produced.extend(self._apply_step(shape, step, rule, ns, rng, diagnostics,
-                                             timings, cache))
+            produced.extend(self._apply_step(shape, step, rule, ns, rng, run))
         several = len(produced) > 1
         children = []
         for i, (symbol, child) in enumerate(produced):
@@ -409,9 +413,7 @@ class Evaluator:
         return children
 
     def _apply_step(self, shape: Shape, step: ast.Step, rule: ast.Rule, ns: Namespace,
-                    rng: np.random.Generator, diagnostics: list[Diagnostic],
-                    timings: dict[str, float],
-                    cache: dict[str, Any]) -> list[tuple[ast.Symbol, Child]]:
+                    rng: np.random.Generator, run: _Run) -> list[tuple[ast.Symbol, Child]]:
         successors = successor_symbols(step)
         if step.op is None:
             return [(symbol, Child(successor=i, geometry=shape.geometry, scope=shape.scope,
@@ -426,8 +428,8 @@ class Evaluator:
             args["repeat"] = step.repeat
         ctx = OperationContext(
             rng=rng, units=self.units, resolve=self._resolver(call),
-            report=diagnostics.append, span=call.span, successor_count=len(successors),
-            cache=cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir)
+            report=run.diagnostics.append, span=call.span, successor_count=len(successors),
+            cache=run.cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir)
         started = time.perf_counter()
         try:
             children = operation.apply(shape, args, ctx)
@@ -436,7 +438,7 @@ class Evaluator:
                 error.span = call.span
             raise
         finally:
-            timings[operation.name] += time.perf_counter() - started
+            run.timings[operation.name] += time.perf_counter() - started
         for child in children:
             if not 0 <= child.successor < len(successors):
                 raise IndexError(f"operation {operation.name} produced a child for successor "

@@ -33,8 +33,8 @@ from shapely.validation import explain_validity
 
 from .errors import DerivationError, ResourceNotFoundError, Span, UsageError
 
-__all__ = ["DEFAULT_LOT", "LOT_FORMATS", "rectangle", "polygon_lot", "parse_lot",
-           "load_geojson", "lot_from_call"]
+__all__ = ["DEFAULT_LOT", "LOT_FORMATS", "validate_lot", "rectangle", "polygon_lot",
+           "parse_lot", "load_geojson", "lot_from_call"]
 
 DEFAULT_LOT = (14.0, 10.0)
 """Width (x) and depth (z) in metres of the lot used when neither CLI nor grammar gives one."""
@@ -54,8 +54,17 @@ def _expected() -> str:
     return "expected one of: " + "; ".join(LOT_FORMATS)
 
 
-def _validated(polygon: Polygon, what: str) -> Polygon:
-    """``polygon`` oriented counter-clockwise, or UsageError saying what is wrong."""
+def validate_lot(polygon: Polygon, what: str = "lot") -> Polygon:
+    """``polygon`` checked (simple, at least 3 corners, positive area) and oriented
+    counter-clockwise in plan coordinates.
+
+    Raises
+    ------
+    UsageError
+        Saying what is wrong, prefixed by ``what``.
+    """
+    if not isinstance(polygon, Polygon):
+        raise UsageError(f"{what}: expected a shapely Polygon, got {type(polygon).__name__}")
     if polygon.is_empty or len(polygon.exterior.coords) < 4:
         raise UsageError(f"{what}: a lot needs at least 3 distinct corners")
     if not polygon.is_valid:
@@ -77,7 +86,7 @@ def rectangle(width: float, depth: float) -> Polygon:
     if not (width > 0 and depth > 0):
         raise UsageError(f"a rectangular lot needs positive width and depth, got "
                          f"{width:g} x {depth:g}")
-    return _validated(Polygon([(0, 0), (width, 0), (width, depth), (0, depth)]),
+    return validate_lot(Polygon([(0, 0), (width, 0), (width, depth), (0, depth)]),
                       f"rectangle {width:g} x {depth:g}")
 
 
@@ -92,7 +101,7 @@ def polygon_lot(points: Sequence[Sequence[float]], what: str = "polygon") -> Pol
     coords = [(float(p[0]), float(p[1])) for p in points]
     if len(coords) < 3:
         raise UsageError(f"{what}: a lot needs at least 3 corners, got {len(coords)}")
-    return _validated(Polygon(coords), what)
+    return validate_lot(Polygon(coords), what)
 
 
 def load_geojson(path: str | Path) -> Polygon:
@@ -115,7 +124,7 @@ def load_geojson(path: str | Path) -> Polygon:
     polygons = _geojson_polygons(document, str(file))
     if len(polygons) != 1:
         raise UsageError(f"{file}: expected exactly one polygon, found {len(polygons)}")
-    return _validated(polygons[0], str(file))
+    return validate_lot(polygons[0], str(file))
 
 
 def _geojson_polygons(document: Any, where: str) -> list[Polygon]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from shapely.geometry import Polygon
 
 from cga import build as build_module
 from cga.build import build
@@ -47,6 +48,11 @@ def test_build_writes_files_and_times_stages(grammar_file, tmp_path):
 def test_build_lot_option_overrides_grammar(grammar_file):
     scene = build(grammar_file, lot="20x5", formats=(), quiet=True)
     assert scene.terminals[-1].geometry.footprint.bounds == (0, 0, 20, 5)
+    clockwise = Polygon([(0, 0), (0, 4), (4, 4), (4, 0)])
+    scene = build(grammar_file, lot=clockwise, formats=(), quiet=True)
+    assert scene.terminals[-1].geometry.footprint.exterior.is_ccw
+    with pytest.raises(UsageError, match="lot: the polygon is not simple"):
+        build(grammar_file, lot=Polygon([(0, 0), (4, 4), (4, 0), (0, 4)]), formats=())
 
 
 def test_failed_export_leaves_no_output(grammar_file, tmp_path, monkeypatch):
