@@ -44,7 +44,7 @@ __all__ = ["Edge", "Corner", "room_edges", "convex_corners", "Placer"]
 _TOLERANCE = 1e-9
 _FREE_SAMPLES = 8
 """Random extra start points a free-standing item tries when its own start is blocked."""
-_LOOKAHEAD = 8
+_LOOKAHEAD = 16
 """Candidate poses a parent tries for a place where all its children fit."""
 
 
@@ -339,6 +339,9 @@ class Placer:
         blocked: list[Conflict] = []
 
         def poses() -> Iterator[Pose]:
+            # first the spot nearest the start on each wall, nearest wall first; then, for
+            # a parent whose children did not fit, the ends and middles of the free stretches
+            later: list[Pose] = []
             for edge, rotation, _ in usable:
                 axis = edge.axis
                 assert axis is not None
@@ -348,15 +351,27 @@ class Placer:
                 lo, hi = edge.span
                 lo, hi = lo - body[axis], hi - body[axis + 2]
                 preferred = min(max(start[axis], lo), hi)
-                found = False
-                for pose in self._free_poses(spec, rotation, axis, fixed, lo, hi, preferred):
-                    found = True
-                    yield pose
-                if not found and not blocked:
+                related = self.related.get(spec.name, frozenset())
+                intervals = self.layout.free_intervals(spec, rotation, axis, fixed, lo, hi,
+                                                       related)
+                if not intervals and not blocked:
                     conflict = self._conflict(spec, _pose(axis, preferred, 1 - axis, fixed,
                                                           rotation))
                     if conflict is not None:
                         blocked.append(conflict)
+                values = sorted({v for a, b in intervals for v in (a, (a + b) / 2, b)},
+                                key=lambda v: abs(v - preferred))
+                nearest = nearest_in(intervals, preferred)
+                for value in ([nearest] if nearest is not None else []) + values:
+                    pose = _pose(axis, value, 1 - axis, fixed, rotation)
+                    if value == nearest:
+                        if self._conflict(spec, pose) is None:
+                            yield pose
+                    elif abs(value - nearest) > 1e-6:
+                        later.append(pose)
+            for pose in later:
+                if self._conflict(spec, pose) is None:
+                    yield pose
 
         if self._commit(spec, poses()):
             return None

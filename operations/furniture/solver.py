@@ -37,6 +37,8 @@ from .steering import random_start, separation_steering
 __all__ = ["RoomSite", "RoomResult", "furnish_room", "furnish_plan"]
 
 STAGE = "add_furniture"
+PATIENCE = 5
+"""Consecutive attempts without placing more items after which a room stops retrying."""
 
 
 @dataclass(frozen=True)
@@ -92,7 +94,8 @@ def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Genera
 
 
 def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator, *,
-                 steering_iterations: int = 10, attempts: int = 20) -> RoomResult:
+                 steering_iterations: int = 10, attempts: int = 20,
+                 patience: int = PATIENCE) -> RoomResult:
     """Place ``specs`` (in placement order) in one room.
 
     Parameters
@@ -119,11 +122,14 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     obstacles near a candidate strip; a full room of a dozen items takes milliseconds.
     """
     best: tuple[dict[str, tuple[ItemSpec, Pose]], list[tuple[str, str]]] | None = None
+    stale = 0
     for _ in range(max(1, attempts)):
         placed, left_out = _solve_once(site, specs, rng, steering_iterations)
         if best is None or len(placed) > len(best[0]):
-            best = (placed, left_out)
-        if not left_out:
+            best, stale = (placed, left_out), 0
+        else:
+            stale += 1
+        if not left_out or stale >= patience:
             break
     assert best is not None
     placed, left_out = best

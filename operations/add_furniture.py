@@ -1,0 +1,131 @@
+"""``add_furniture(rules.csv, wallWidth>windowWidth>windowHigh, doorWidth, doorHeight,
+steeringIterations, clearanceTries)``: furnish every typed room of a floor.
+
+The thin grammar-facing wrapper of :mod:`cga.operations.furniture.solver` (DESIGN §8,
+thesis §5.3.4): it reads the rule table, looks up each item's model (loaded once per
+build through the shared model library), converts the table's distances from grammar
+units to metres and returns the floor with its furniture and the solver's messages.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError
+from cga.shape import Shape
+
+from .base import Child, Operation, OperationContext, Param
+from .furniture.library import ModelLibrary, default_library
+from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
+from .furniture.solver import furnish_plan
+
+__all__ = ["AddFurniture", "LIBRARY_CACHE_KEY"]
+
+LIBRARY_CACHE_KEY = "model_library"
+"""Key of the build's :class:`~cga.operations.furniture.library.ModelLibrary` in
+:attr:`OperationContext.cache`."""
+
+
+class AddFurniture(Operation):
+    """Typed floor → the same floor with furniture in every typed room.
+
+    Parameters (grammar)
+    --------------------
+    rules:
+        The furniture rule table (CSV, see :mod:`cga.operations.furniture.rules`),
+        found next to the grammar first, then among the shipped ``rules/``.
+    openings, doorWidth, doorHeight:
+        ``wallWidth>windowWidth>windowHigh`` and the door size, accepted so the thesis'
+        grammars run unchanged. They are not used: the floor plan already knows its
+        walls, windows and doors (``make_floor``/``type_rooms``), and the door leaves and
+        window panes are sized to the openings themselves.
+    steeringIterations:
+        Rounds of separation steering of the random start positions.
+    clearanceTries:
+        Attempts per room: while items are left out, the room is solved again from new
+        random starts, keeping the layout that places the most items.
+
+    Every item that cannot be placed is left out with a warning naming the item, the
+    room and the reason; the warnings travel on the floor plan's ``diagnostics``.
+    """
+
+    name = "add_furniture"
+    params = (
+        Param("rules", "path", doc="furniture rule table (CSV)"),
+        Param("openings", "tuple", default=None, items=("length", "length", "length"),
+              doc="wallWidth>windowWidth>windowHigh (thesis compatibility; unused)"),
+        Param("doorWidth", "length", default=None, doc="door width (thesis compatibility; unused)"),
+        Param("doorHeight", "length", default=None,
+              doc="door height (thesis compatibility; unused)"),
+        Param("steeringIterations", "count", default=10,
+              doc="rounds of separation steering of the start positions"),
+        Param("clearanceTries", "count", default=20,
+              doc="solves per room from new random starts while items are left out"),
+    )
+    doc = ("add_furniture(rules.csv, wallWidth>windowWidth>windowHigh, doorWidth, doorHeight, "
+           "steeringIterations, clearanceTries): furnish every typed room of the floor")
+
+    def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        plan = shape.plan
+        if plan is None:
+            raise DerivationError(
+                "add_furniture needs a floor with typed rooms, but this shape has no floor plan",
+                ctx.span, hint="apply make_floor(...) and type_rooms(...) before add_furniture")
+        if not any(room.type for room in plan.rooms):
+            raise DerivationError(
+                "add_furniture needs typed rooms, but no room of this floor has a type",
+                ctx.span, hint="apply type_rooms(...) before add_furniture")
+        path = Path(ctx.resolve(args["rules"], "rules"))
+        rules = _rules(ctx, path)
+        library = _library(ctx)
+        models = _models(rules, library)
+        furniture, diagnostics = furnish_plan(
+            plan, rules.scaled(ctx.units), models, ctx.rng,
+            steering_iterations=args["steeringIterations"], attempts=args["clearanceTries"])
+        for item in furniture:
+            if item.is_detail:
+                library.get(item.model)
+        furnished = plan.with_changes(furniture=furniture,
+                                      diagnostics=plan.diagnostics + diagnostics)
+        return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=furnished)]
+
+
+def _rules(ctx: OperationContext, path: Path) -> FurnitureRules:
+    """The parsed table, read once per build."""
+    key = f"furniture_rules:{path.resolve()}"
+    rules = ctx.cache.get(key)
+    if rules is None:
+        rules = ctx.cache[key] = load_furniture_rules(path)
+    return rules
+
+
+def _library(ctx: OperationContext) -> ModelLibrary:
+    """The build's model library: the grammar's folder and its ``models/``, then the
+    shipped models; created on first use and shared through ``ctx.cache``."""
+    library = ctx.cache.get(LIBRARY_CACHE_KEY)
+    if library is None:
+        extra = [ctx.base_dir, ctx.base_dir / "models"] if ctx.base_dir is not None else []
+        library = ctx.cache[LIBRARY_CACHE_KEY] = default_library(extra)
+    return library
+
+
+def _model(rule: FurnitureRule, library: ModelLibrary, file: str) -> Any:
+    try:
+        return library.get(rule.name)
+    except ResourceNotFoundError as error:
+        looked = ", ".join(error.searched)
+        raise RuleTableError(f"no model for '{rule.name}' (looked for "
+                             f"{' or '.join(repr(n) for n in rule.model_candidates())}.obj "
+                             f"in {looked})", file=file, row=rule.row, column="Name") from None
+
+
+def _models(rules: FurnitureRules, library: ModelLibrary
+            ) -> dict[str, tuple[str, tuple[float, float, float]]]:
+    """Rule name → (model name, size in metres); every model must exist."""
+    models = {}
+    for rule in rules:
+        model = _model(rule, library, rules.file)
+        if not rule.is_detail:
+            models[rule.name] = (model.name, model.size)
+    return models

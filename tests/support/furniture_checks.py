@@ -1,0 +1,232 @@
+"""Independent checks of a furnished floor: overlaps, rooms, doors, windows, pairs.
+
+Written against the documented guarantees only (DESIGN §8, docs/furniture.md), not the
+solver: the rule table is read with :mod:`csv`, door swings and window bands are built
+here from the door and window records, and every test is a plain shapely predicate on
+the items' footprints (:meth:`cga.model.FurnitureItem.footprint`). A bug in the solver
+cannot hide behind the same bug here.
+
+Checked, with a tolerance of 1 mm:
+
+* no two solid items (not details, not non-colliding) overlap;
+* every item lies inside the free floor of its room;
+* no solid item stands in the quarter circle a door leaf sweeps;
+* no ``canCloseWindow`` item stands in the band in front of a window, as deep as the
+  item plus its front clearance;
+* clearances: the front/back/side boxes of every solid item are free of walls and of
+  solid items other than its own parent and children;
+* children keep their pair distances (``maxPairDistance`` 0 = unbounded; not checked
+  for a child against a wall) and face their parent: ``canBeAround`` children look at
+  it, ``isOnTheSide`` children stand beside it turned the same way, other children
+  stand in front of it, within its width, turned to face it.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+from shapely.geometry import LineString, Point, Polygon, box
+
+__all__ = ["read_furniture_rules", "furniture_violations"]
+
+TOL = 1e-3
+OUTSIDE = -1
+
+
+def _key(header: str) -> str:
+    return re.sub(r"[^a-z]", "", header.lower()).replace("paar", "pair")
+
+
+def read_furniture_rules(path: str | Path, units: float = 1.0) -> dict[tuple[str, str], dict]:
+    """``(room type, item name)`` (lower case) → the row's values (distances × units)."""
+    text = Path(path).read_text(encoding="utf-8-sig")
+    header_line = next(line for line in text.splitlines() if line.strip())
+    delimiter = max(";\t,", key=header_line.count)
+    rows = [r for r in csv.reader(text.splitlines(), delimiter=delimiter) if any(c.strip() for c in r)]
+    header = [_key(h) for h in rows[0]]
+    rules = {}
+    for row in rows[1:]:
+        cell = {h: c.strip() for h, c in zip(header, row) if h}
+
+        def flag(name: str) -> bool:
+            return cell.get(name, "").lower() in ("true", "1", "yes")
+
+        def number(name: str) -> float:
+            value = cell.get(name, "")
+            return 0.0 if value.lower() in ("", "<null>") else float(value.replace(",", ".")) * units
+
+        rules[(cell["room"].lower(), cell["name"].lower())] = {
+            "along_wall": flag("isalongwall"),
+            "around": flag("canbearound"),
+            "side": flag("isontheside"),
+            "close_window": flag("canclosewindow"),
+            "min": number("minpairdistance"),
+            "max": number("maxpairdistance"),
+            "front": number("clearancefront"),
+            "back": number("clearanceback"),
+            "flank": number("clearanceside"),
+        }
+    return rules
+
+
+def _side_into(plan, wall, point, room_id) -> np.ndarray:
+    """Unit normal of ``wall`` at ``point`` pointing into room ``room_id``."""
+    (x0, z0), (x1, z1) = wall.start, wall.end
+    length = math.hypot(x1 - x0, z1 - z0)
+    normal = np.array([-(z1 - z0), x1 - x0]) / length
+    probe = Point(point[0] + normal[0] * 0.01, point[1] + normal[1] * 0.01)
+    return normal if plan.room(room_id).polygon.contains(probe) else -normal
+
+
+def door_swing_area(plan, door) -> Polygon:
+    """The quarter circle swept by the door leaf, hinged on the wall face in its room."""
+    wall = plan.wall(door.wall)
+    normal = _side_into(plan, wall, door.position, door.swing_room)
+    direction = np.subtract(wall.end, wall.start) / wall.length
+    depth = plan.room(door.swing_room).interior.distance(Point(door.position))
+    sign = -1 if door.hinge == "start" else 1
+    hinge = np.asarray(door.position) + direction * sign * door.width / 2 + normal * depth
+    latch = -sign * direction
+    steps = np.linspace(0, math.pi / 2, 33)
+    arc = [hinge + door.width * (math.cos(a) * latch + math.sin(a) * normal) for a in steps]
+    return Polygon([tuple(hinge), *map(tuple, arc)])
+
+
+def window_band(plan, window, depth: float) -> Polygon:
+    """The band in front of a window in its room, ``depth`` beyond the wall face."""
+    wall = plan.wall(window.wall)
+    normal = _side_into(plan, wall, window.position, window.room)
+    direction = np.subtract(wall.end, wall.start) / wall.length
+    face = plan.room(window.room).interior.distance(Point(window.position))
+    a = np.asarray(window.position) - direction * window.width / 2
+    b = np.asarray(window.position) + direction * window.width / 2
+    reach = normal * (face + depth)
+    return Polygon([tuple(a), tuple(b), tuple(b + reach), tuple(a + reach)])
+
+
+def _shrunk(polygon: Polygon) -> Polygon:
+    return polygon.buffer(-TOL / 2, join_style="mitre")
+
+
+def _clearance_boxes(item, rule) -> list[tuple[str, Polygon]]:
+    """The item's clearance rectangles, built from its front vector and size."""
+    w, _, d = item.size
+    fx, fz = item.front
+    sx, sz = -fz, fx
+    cx, cz = item.position
+
+    def rect(s0, s1, f0, f1):
+        corners = [(cx + sx * s + fx * f, cz + sz * s + fz * f) for s in (s0, s1) for f in (f0, f1)]
+        xs, zs = zip(*corners)
+        return box(min(xs), min(zs), max(xs), max(zs))
+
+    out = []
+    if rule["front"] > 0:
+        out.append(("front", rect(-w / 2, w / 2, d / 2, d / 2 + rule["front"])))
+    if rule["back"] > 0:
+        out.append(("back", rect(-w / 2, w / 2, -d / 2 - rule["back"], -d / 2)))
+    if rule["flank"] > 0:
+        out.append(("side", rect(w / 2, w / 2 + rule["flank"], -d / 2, d / 2)))
+        out.append(("side", rect(-w / 2 - rule["flank"], -w / 2, -d / 2, d / 2)))
+    return out
+
+
+def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0) -> list[str]:
+    """Every broken guarantee of a furnished floor, as readable messages (empty = valid)."""
+    rules = read_furniture_rules(rules_path, units)
+    types = {room.id: (room.type or "").lower() for room in plan.rooms}
+    problems: list[str] = []
+    items = list(plan.furniture)
+    solid = [i for i in items if not i.is_detail and not i.non_collision]
+    by_key = {(i.room, i.name): i for i in items if not i.is_detail}
+
+    def rule_of(item):
+        return rules.get((types[item.room], item.name.lower()))
+
+    for item in items:
+        if item.is_detail:
+            continue
+        room = plan.room(item.room)
+        if not room.interior.buffer(TOL).covers(item.footprint()):
+            problems.append(f"{item.name} (room {item.room}) is not inside its room's free floor")
+    for i, a in enumerate(solid):
+        for b in solid[i + 1:]:
+            if _shrunk(a.footprint()).intersects(_shrunk(b.footprint())):
+                problems.append(f"{a.name} (room {a.room}) overlaps {b.name} (room {b.room})")
+    for door in plan.doors:
+        if door.swing_room == OUTSIDE:
+            continue
+        swing = _shrunk(door_swing_area(plan, door))
+        for item in solid:
+            if _shrunk(item.footprint()).intersects(swing):
+                problems.append(f"{item.name} (room {item.room}) is in the swing of door {door.id}")
+    for item in solid:
+        rule = rule_of(item)
+        if rule is None:
+            problems.append(f"{item.name} (room {item.room}) has no rule")
+            continue
+        if rule["close_window"]:
+            for window in plan.windows:
+                if window.room != item.room:
+                    continue
+                band = window_band(plan, window, item.size[2] + rule["front"])
+                if _shrunk(item.footprint()).intersects(_shrunk(band)):
+                    problems.append(f"{item.name} (room {item.room}) covers window {window.id}")
+        family = {item.parent} | {c.name for c in items if c.parent == item.name and c.room == item.room}
+        walls = plan.room(item.room).interior
+        for side, clearance in _clearance_boxes(item, rule):
+            if not walls.buffer(TOL).covers(clearance):
+                problems.append(f"{item.name} (room {item.room}): clearance {side} reaches into a wall")
+            for other in solid:
+                if other is item or other.room != item.room or other.name in family:
+                    continue
+                if _shrunk(clearance).intersects(_shrunk(other.footprint())):
+                    problems.append(f"{item.name} (room {item.room}): clearance {side} blocked by "
+                                    f"{other.name}")
+    for item in items:
+        if item.is_detail or item.parent is None:
+            continue
+        parent = by_key.get((item.room, item.parent))
+        rule = rule_of(item)
+        where = f"{item.name} (room {item.room})"
+        if parent is None:
+            problems.append(f"{where}: parent {item.parent} is not in the room")
+            continue
+        gap = parent.footprint().distance(item.footprint())
+        if gap < rule["min"] - TOL:
+            problems.append(f"{where}: {gap:.3f} m from {parent.name}, below {rule['min']:g}")
+        if rule["max"] > 0 and not rule["along_wall"] and gap > rule["max"] + TOL:
+            problems.append(f"{where}: {gap:.3f} m from {parent.name}, above {rule['max']:g}")
+        problems.extend(_orientation_problems(item, parent, rule, where))
+    return problems
+
+
+def _orientation_problems(item, parent, rule, where: str) -> list[str]:
+    to_parent = np.subtract(parent.position, item.position)
+    front = np.asarray(item.front)
+    if rule["around"]:
+        ray = LineString([item.position, tuple(np.asarray(item.position) + front * 100)])
+        if not ray.intersects(parent.footprint()):
+            return [f"{where} does not face {parent.name}"]
+        return []
+    if rule["side"]:
+        if item.rotation != parent.rotation:
+            return [f"{where} is not turned like {parent.name}"]
+        lateral = abs(np.dot(to_parent, (-parent.front[1], parent.front[0])))
+        if lateral < (parent.size[0] + item.size[0]) / 2 - TOL:
+            return [f"{where} is not beside {parent.name}"]
+        return []
+    problems = []
+    if not np.allclose(front, -np.asarray(parent.front)):
+        problems.append(f"{where} does not face {parent.name}")
+    ahead = -np.dot(to_parent, parent.front)
+    lateral = abs(np.dot(to_parent, (-parent.front[1], parent.front[0])))
+    if ahead <= 0:
+        problems.append(f"{where} is not in front of {parent.name}")
+    if lateral > parent.size[0] / 2 + TOL:
+        problems.append(f"{where} is off to the side of {parent.name} by {lateral:.2f} m")
+    return problems
