@@ -21,6 +21,11 @@ def _area(value: float) -> str:
     return f"{value:.1f} m²"
 
 
+def _a(name: str) -> str:
+    """``name`` with its indefinite article ("a Kitchen", "an Office")."""
+    return f"{'an' if name[:1].lower() in 'aeiou' else 'a'} {name}"
+
+
 def _either(names: Sequence[str]) -> str:
     names = list(names)
     return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
@@ -62,7 +67,7 @@ def _stranded(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec, failure
               type_at: dict[int, str]) -> str:
     home = failure.rooms[failure.rules[0]]
     wanted = _listed(rule, rules)
-    head = f"{rule.type} in {rooms.name(home)} needs a {_either(wanted)} neighbour"
+    head = f"{rule.type} in {rooms.name(home)} needs {_a(_either(wanted))} neighbour"
     waiting = [r for k, r in enumerate(rules) if r.type in wanted and failure.rooms[k] < 0]
     if not waiting:
         return f"{head}, but {_and(wanted)} went to other rooms"
@@ -71,7 +76,7 @@ def _stranded(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec, failure
         return f"{head} but has no free neighbour left"
     smallest = min(waiting, key=lambda r: r.min_area)
     sizes = ", ".join(_area(rooms.areas[i]) for i in beside)
-    return (f"{head}; its free neighbours ({sizes}) are smaller than a {smallest.type} "
+    return (f"{head}; its free neighbours ({sizes}) are smaller than {_a(smallest.type)} "
             f"needs ({_area(smallest.min_area)})")
 
 
@@ -99,15 +104,15 @@ def _no_room(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec,
         largest = max(rooms.areas[i] for i in next_to)
         if largest < rule.min_area:
             return (f"{rule.type} needs ≥ {_area(rule.min_area)}; the largest free room next "
-                    f"to a {_either(present)} has {_area(largest)}")
-        return (f"{rule.type} gets the front door, but the free rooms next to a "
-                f"{_either(present)} have no outer wall long enough for a door")
+                    f"to {_a(_either(present))} has {_area(largest)}")
+        return (f"{rule.type} gets the front door, but the free rooms next to "
+                f"{_a(_either(present))} have no outer wall long enough for a door")
     wanted = _either(_listed(rule, rules))
     around = sorted({type_at[j] for i in fitting for j in rooms.adjacency[i] if j in type_at})
     if around:
-        return (f"{rule.type} needs a {wanted} neighbour; free rooms adjoin only "
+        return (f"{rule.type} needs {_a(wanted)} neighbour; free rooms adjoin only "
                 f"{', '.join(around)}")
-    return (f"{rule.type} needs a {wanted} neighbour; the free rooms of "
+    return (f"{rule.type} needs {_a(wanted)} neighbour; the free rooms of "
             f"≥ {_area(rule.min_area)} adjoin no typed room")
 
 
@@ -130,7 +135,7 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
                        "and an outer wall long enough for a door; no room has one"))
     needs = sorted(rules, key=lambda r: r.min_area, reverse=True)
     areas = sorted(rooms.areas, reverse=True)
-    for count, rule in enumerate(needs, start=1):
+    for count, rule in enumerate(needs[1:], start=2):  # one rule alone: said above
         if count <= len(areas) and areas[count - 1] < rule.min_area:
             names = ", ".join(f"{r.type} {_area(r.min_area)}" for r in needs[:count])
             big = sum(a >= rule.min_area for a in areas)
@@ -138,18 +143,22 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
                            f"{big} room{'s' if big != 1 else ''} ha{'ve' if big != 1 else 's'} "
                            f"≥ {_area(rule.min_area)}")
             break
-    lonely = []
+    lonely: list[str] = []
     for rule in rules:
         partners = [r for r in rules if r is not rule and r.type in rule.neighbours]
-        if not any(room_fits(rooms, rule, i) and any(room_fits(rooms, p, j) for p in partners
-                                                  for j in rooms.adjacency[i])
-                   for i in range(len(rooms))):
-            lonely.append(rule)
+        if any(room_fits(rooms, rule, i) and room_fits(rooms, p, j)
+               for i in range(len(rooms)) for j in rooms.adjacency[i] for p in partners):
+            continue
+        if not partners:
+            lonely.append(f"{rule.type} lists only {', '.join(sorted(rule.neighbours))}, "
+                          "none of them a mandatory type")
+        else:
+            smallest = min(p.min_area for p in partners)
+            lonely.append(f"{rule.type} needs {_a(_either([p.type for p in partners]))} "
+                          f"neighbour; no room of ≥ {_area(rule.min_area)} adjoins a room of "
+                          f"≥ {_area(smallest)}")
     if len(lonely) > 1:
-        detail = "; ".join(
-            f"{r.type} (≥ {_area(r.min_area)}) lists {', '.join(sorted(r.neighbours))}"
-            for r in lonely)
-        reasons.append(f"{len(lonely)} rules can never get a neighbour of a listed mandatory "
-                       f"type big enough beside a room big enough for them, and only the "
-                       f"first rule placed may go without one: {detail}")
+        reasons.append(f"only one rule (the first placed) may go without a listed neighbour, "
+                       f"but {len(lonely)} cannot have one:")
+        reasons += lonely
     return reasons

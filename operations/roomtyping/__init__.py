@@ -1,0 +1,32 @@
+"""Room typing (DESIGN §7, thesis §3.3 and §5.2): the algorithms behind ``type_rooms``.
+
+One concern per module:
+
+:mod:`.rules`       the thesis' semicolon rule tables: parsing and validation
+:mod:`.assign`      the typing process: first rule by ``Prob``, mandatory, optional, default
+:mod:`.backtrack`   placing the mandatory rules: greedy pass + complete correction search
+:mod:`.explain`     why the rules do not fit, in numbers
+:mod:`.doors`       where a door fits in a wall, where it goes, how it swings
+:mod:`.room_graph`  door-capable adjacency, rule edges, fewest extra doors, the graph
+
+The grammar operation and the floor-plan wiring are in :mod:`cga.operations.type_rooms`;
+rule authors test their tables with :mod:`cga.authoring`.
+"""
+
+from .assign import Typing, TypingNote, assign_types
+from .backtrack import RoomSet, RuleSpec
+from .rules import COLUMNS, DEFAULT_TYPE, RuleTable, TypeRule, load_rule_table, parse_rule_table
+
+__all__ = [
+    "COLUMNS",
+    "DEFAULT_TYPE",
+    "RoomSet",
+    "RuleSpec",
+    "RuleTable",
+    "TypeRule",
+    "Typing",
+    "TypingNote",
+    "assign_types",
+    "load_rule_table",
+    "parse_rule_table",
+]

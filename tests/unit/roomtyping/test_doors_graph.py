@@ -1,0 +1,179 @@
+"""Door sites, door placement, the front door, swings, reachability doors, the graph."""
+
+import math
+
+import numpy as np
+import pytest
+from typing_checks import validate_typed_plan
+
+from cga.errors import NoSolutionError
+from cga.model import OUTSIDE, FloorSettings, Opening
+from cga.operations.floorplan.rectangles import plan_from_rectangles
+from cga.operations.roomtyping.doors import door_spans, door_swing, free_intervals
+from cga.operations.roomtyping.room_graph import door_sites
+from cga.operations.roomtyping.rules import parse_rule_table
+from cga.operations.type_rooms import type_plan
+
+HEADER = "Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom"
+THREE = [(0, 0, 6, 10), (6, 0, 14, 5), (6, 5, 14, 10)]
+
+
+def rules(*rows):
+    return parse_rule_table("\n".join([HEADER, *rows]), file="t.csv")
+
+
+def write(tmp_path, table_rows):
+    path = tmp_path / "rules.csv"
+    path.write_text("\n".join([HEADER, *table_rows]) + "\n")
+    return path
+
+
+def wall_between(plan, a, b):
+    return next(w for w in plan.walls if set(w.rooms) == {a, b})
+
+
+def test_door_spans_keep_clear_of_the_walls_at_each_end():
+    plan = plan_from_rectangles(THREE)
+    spans = door_spans(plan)
+    t = plan.settings.wall_thickness
+    inner = wall_between(plan, 0, 1)  # (6,0) on the footprint → (6,5) a T-junction inside
+    assert inner.start == (6.0, 0.0)
+    assert spans[inner.id] == pytest.approx((0.1 + t, 5 - 0.1 - t / 2))
+    outer = next(w for w in plan.walls if w.outer)
+    assert spans[outer.id] == pytest.approx((0.1 + t, outer.length - 0.1 - t))
+
+
+def test_free_intervals_skip_openings_with_margins():
+    plan = plan_from_rectangles(THREE)
+    wall = next(w for w in plan.walls if w.outer and w.length == 8)
+    (window,) = wall.openings
+    (a, b), (c, d) = free_intervals(wall, (0.3, 7.7))
+    assert (a, b, c, d) == pytest.approx((0.3, window.center - 0.7, window.center + 0.7, 7.7))
+
+
+def test_short_shared_wall_is_no_door_site_so_rooms_are_not_neighbours():
+    # rooms 0 and 3 share 1.0 m of wall (x = 5, z 4..5): too short for 0.9 m + margins
+    plan = plan_from_rectangles([(0, 0, 5, 5), (5, 0, 10, 4), (0, 5, 5, 10), (5, 4, 10, 10)])
+    assert any(set(w.rooms) == {0, 3} for w in plan.walls)
+    sites = door_sites(plan, door_spans(plan), plan.settings.door_width)
+    assert (0, 3) not in sites.inner
+    assert {(0, 1), (0, 2), (1, 3), (2, 3)} <= set(sites.inner)
+
+
+def test_doors_follow_listed_types_and_swing_into_the_bigger_room(tmp_path):
+    table = ["Livingroom;50;1;Kitchen, Bedroom;1;1;0", "Kitchen;30;0;Livingroom;0;1;0",
+             "Bedroom;30;0;Livingroom;0;1;0"]
+    plan = plan_from_rectangles(THREE)
+    typed = type_plan(plan, rules(*table), np.random.default_rng(0), door_position="center")
+    validate_typed_plan(typed, write(tmp_path, table))
+    assert typed.room(0).type == "Livingroom"
+    inner = [d for d in typed.doors if not d.is_front]
+    assert sorted(d.rooms for d in inner) == [(0, 1), (0, 2)]
+    for door in inner:
+        assert door.swing_room == 0 and door.reason == "rule"
+        wall = typed.wall(door.wall)
+        centre = math.dist(wall.start, door.position)
+        lo, hi = door_spans(plan)[wall.id]
+        assert centre == pytest.approx((lo + hi) / 2)
+        assert door.hinge == ("start" if centre <= wall.length / 2 else "end")
+        assert typed.room(0).interior.buffer(1e-6).covers(door_swing(door, typed))
+
+
+def test_front_door_takes_the_longest_free_outer_stretch_and_opens_inwards():
+    table = rules("Livingroom;50;1;Kitchen;1;1;0", "Kitchen;10;0;Livingroom;0;1;0")
+    typed = type_plan(plan_from_rectangles(THREE), table, np.random.default_rng(3),
+                      door_position="center")
+    (front,) = [d for d in typed.doors if d.is_front]
+    assert front.rooms == (0, OUTSIDE) and front.swing_room == 0 and front.reason == "front"
+    wall = typed.wall(front.wall)
+    assert wall.outer and 0 in wall.rooms
+    # room 0's outer walls are 6, 10 and 6 m, one centred window each: the 10 m wall has
+    # the longest stretch beside its window
+    assert wall.length == 10
+    assert len(typed.windows) == len(plan_from_rectangles(THREE).windows)
+    assert typed.room(0).interior.buffer(1e-6).covers(door_swing(front, typed))
+
+
+def test_front_door_replaces_a_window_when_no_gap_takes_it():
+    settings = FloorSettings(window_width=2.0)
+    plan = plan_from_rectangles([(0, 0, 3, 3), (3, 0, 6, 3)], settings=settings)
+    table = rules("Livingroom;5;1;Kitchen;1;1;0", "Kitchen;5;0;Livingroom;0;1;0")
+    typed = type_plan(plan, table, np.random.default_rng(0))
+    front = typed.front_door()
+    wall = typed.wall(front.wall)
+    assert [o.kind for o in wall.openings] == ["door"]
+    assert len(typed.windows) == len(plan.windows) - 1
+    assert all(w.wall != wall.id for w in typed.windows)
+    assert any("replaces 1 window" in d.message for d in typed.diagnostics)
+
+
+def test_fewest_extra_doors_make_every_room_reachable(tmp_path):
+    # nobody lists anybody useful: only the front door comes from the rules
+    table = ["Hall;1;1;Hall;1;1;0", "Cell;1;0;Nothing;0;9;1", "Nothing;1;0;Hall;0;0;1"]
+    rects = [(0, 0, 4, 4), (4, 0, 8, 4), (8, 0, 12, 4), (0, 4, 4, 8), (4, 4, 8, 8), (8, 4, 12, 8)]
+    typed = type_plan(plan_from_rectangles(rects), rules(*table), np.random.default_rng(0))
+    validate_typed_plan(typed, write(tmp_path, table))
+    extra = [d for d in typed.doors if d.reason == "reachability"]
+    assert len(extra) == len(rects) - 1  # a spanning tree: the fewest possible
+    notes = [d for d in typed.diagnostics if "so every room can be reached" in d.message]
+    assert len(notes) == len(extra) and all(n.level == "warning" for n in notes)
+    entry = typed.front_door().swing_room
+    # hubs first: every extra door that can touch the entry room does
+    assert sum(entry in d.rooms for d in extra) == len(
+        door_sites(typed, door_spans(typed), 0.9).adjacency(range(6))[entry])
+
+
+def test_strict_refuses_to_add_doors_and_says_which_rooms_are_cut_off():
+    table = rules("Livingroom;1;1;Kitchen;1;1;0", "Kitchen;1;0;Livingroom;0;1;0",
+                  "Storageroom;1;0;Kitchen;0;1;1")
+    # Storageroom can only be placed next to the kitchen and gets its door from its rule;
+    # the bedroom-less third room becomes a Commonroom, which no rule lists
+    plan = plan_from_rectangles([(0, 0, 5, 5), (5, 0, 10, 5), (10, 0, 15, 5), (15, 0, 20, 5)])
+    with pytest.raises(NoSolutionError) as info:
+        for seed in range(20):
+            type_plan(plan, table, np.random.default_rng(seed), strict=True)
+    assert "strict" in str(info.value)
+    assert any("Commonroom" in r and "lists nothing (no rule)" in r for r in info.value.reasons)
+
+
+def test_upper_floor_has_no_front_door_and_enters_by_the_outside_rule_room(tmp_path):
+    table = ["Livingroom;1;1;Kitchen, Bedroom;1;1;0", "Kitchen;1;0;Livingroom;0;1;0",
+             "Bedroom;1;0;Livingroom;0;1;0"]
+    plan = plan_from_rectangles(THREE, index=1)
+    typed = type_plan(plan, rules(*table), np.random.default_rng(0))
+    validate_typed_plan(typed, write(tmp_path, table), front_door=False)
+    entry = typed.room_graph.graph["entry"]
+    assert typed.room(entry).type == "Livingroom"
+    assert not typed.room_graph.edges(OUTSIDE)
+    assert any("upper floor" in d.message for d in typed.diagnostics)
+
+
+def test_ground_floor_without_outside_rule_warns_and_enters_by_the_largest_room():
+    table = rules("Office;1;1;Office;0;3;0")
+    typed = type_plan(plan_from_rectangles(THREE), table, np.random.default_rng(0))
+    assert typed.front_door() is None
+    assert typed.room_graph.graph["entry"] == 0  # 60 m², the largest
+    warning = next(d for d in typed.diagnostics if "no front door" in d.message)
+    assert warning.level == "warning" and "isOutsideConnected" in warning.message
+
+
+def test_room_graph_nodes_types_and_edges():
+    table = rules("Livingroom;1;1;Kitchen, Bedroom;1;1;0", "Kitchen;1;0;Livingroom;0;1;0",
+                  "Bedroom;1;0;Livingroom;0;1;0")
+    typed = type_plan(plan_from_rectangles(THREE), table, np.random.default_rng(0))
+    graph = typed.room_graph
+    assert graph.nodes[OUTSIDE]["type"] == "outside"
+    assert {graph.nodes[r.id]["type"] for r in typed.rooms} == {"Livingroom", "Kitchen", "Bedroom"}
+    for a, b, data in graph.edges(data=True):
+        door = typed.doors[data["door"]]
+        assert set(door.rooms) == {a, b} and data["wall"] == door.wall
+        assert data["reason"] == door.reason
+
+
+def test_existing_openings_on_inner_walls_are_respected():
+    plan = plan_from_rectangles(THREE)
+    wall = wall_between(plan, 0, 1)
+    blocked = wall.with_opening(Opening("door", center=2.55, width=4.5, height=2.1))
+    plan = plan.with_changes(walls=tuple(blocked if w.id == wall.id else w for w in plan.walls))
+    sites = door_sites(plan, door_spans(plan), 0.9)
+    assert (0, 1) not in sites.inner
