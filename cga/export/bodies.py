@@ -22,6 +22,7 @@ convex parts, one collision element each.
 
 from __future__ import annotations
 
+import hashlib
 import math
 import re
 from collections.abc import Sequence
@@ -35,7 +36,7 @@ from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
 from .frames import WORLD_TO_ROS, RosPose, pose_to_ros, world_to_ros
-from .obj import MeshGroup, mtl_text, node_groups, obj_text
+from .obj import MeshGroup, mtl_text, node_groups, node_material, obj_text
 from .palette import RGB, node_color
 
 __all__ = ["RobotBody", "BodyFiles", "MESH_DIR", "robot_bodies", "write_body_meshes",
@@ -49,15 +50,17 @@ MESH_DIR = "meshes"
 class RobotBody:
     """One rigid body in the ROS frame.
 
-    ``groups`` are the visual meshes in the link frame, ``collisions`` the collision
-    meshes in the link frame (convex parts; for the building one concave mesh).
+    ``visual`` holds the visual meshes and ``collisions`` the collision meshes, all in
+    the link frame (an item's convex parts; the building's one concave mesh).
     ``inertia`` is the diagonal (ixx, iyy, izz) in kg·m² about the link origin.
+    ``label`` names its mesh files (the model name, or ``building``).
     """
 
     name: str
     node: str | None
+    label: str
     pose: RosPose
-    groups: tuple[MeshGroup, ...]
+    visual: tuple[MeshGroup, ...]
     materials: dict[str, RGB]
     collisions: tuple[MeshGroup, ...]
     mass: float
@@ -97,8 +100,7 @@ def numbers_text(values: Sequence[float]) -> str:
     return " ".join(out)
 
 
-def _identifier(path: str) -> str:
-    text = path.replace("/furniture/", "/")
+def _identifier(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9_]+", "_", text).strip("_") or "item"
 
 
@@ -114,38 +116,34 @@ def _unique(names: list[str]) -> list[str]:
 
 def _item_body(node: SceneNode, name: str) -> RobotBody:
     turns = int(node.extras.get("rotation", 0)) % 4
-    centre_world = np.asarray(node.mesh.bounds, dtype=float).mean(axis=0)
-    pose = pose_to_ros(centre_world, 90.0 * turns)
-    # link frame: ROS axes turned by the yaw about the bounding-box centre
+    pose = pose_to_ros(np.asarray(node.mesh.bounds, dtype=float).mean(axis=0), 90.0 * turns)
+    # link frame: the ROS axes turned by the yaw, origin at the bounding-box centre;
+    # a ROS point p has link coordinates yawᵀ (p − origin), i.e. (p − origin) @ yaw as rows
     c, s = math.cos(pose.yaw), math.sin(pose.yaw)
     yaw = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-    to_link = yaw.T @ WORLD_TO_ROS
     origin = np.asarray(pose.position)
 
     def local(mesh) -> np.ndarray:
-        return world_to_ros(mesh.vertices) @ yaw - origin @ yaw
+        return (world_to_ros(mesh.vertices) - origin) @ yaw
 
-    parts = node.parts or (node.mesh,)
-    collisions = tuple(MeshGroup(f"{name}_part{k}", local(p), np.asarray(p.faces), "collision")
-                       for k, p in enumerate(parts))
-    groups, materials = node_groups([node], transform=to_link)
-    groups = [MeshGroup(g.name, g.vertices - origin @ yaw, g.faces, g.material) for g in groups]
+    label = _identifier(str(node.extras.get("model", "item")))
+    material, color = node_material(node)
+    collisions = tuple(MeshGroup(f"{label}_part{k}", local(p), np.asarray(p.faces), material)
+                       for k, p in enumerate(node.parts or (node.mesh,)))
     stacked = np.vstack([g.vertices for g in collisions])
-    extents = stacked.max(axis=0) - stacked.min(axis=0)
     static = bool(node.static)
-    if static:
-        mass = 0.0
-    else:
-        mass = float(node.extras.get("mass", 0.0))
-        if not mass > 0.0:
-            raise ExportError(f"furniture node '{node.path}' has no positive 'mass' extra "
-                              f"(got {node.extras.get('mass')!r}); robot exports need the "
-                              f"mass of every movable item")
+    mass = 0.0 if static else float(node.extras.get("mass", 0.0))
+    if not static and not mass > 0.0:
+        raise ExportError(f"furniture node '{node.path}' has no positive 'mass' extra "
+                          f"(got {node.extras.get('mass')!r}); robot exports need the "
+                          f"mass of every movable item")
     return RobotBody(
-        name=name, node=node.path, pose=pose, groups=tuple(groups), materials=materials,
-        collisions=collisions, mass=mass,
-        inertia=(0.0, 0.0, 0.0) if static else box_inertia(mass, extents),
-        static=static, concave=False, color=node_color(node.kind, node.extras))
+        name=name, node=node.path, label=label, pose=pose,
+        visual=(MeshGroup(label, local(node.mesh), np.asarray(node.mesh.faces), material),),
+        materials={material: color}, collisions=collisions, mass=mass,
+        inertia=(0.0, 0.0, 0.0) if static else box_inertia(
+            mass, stacked.max(axis=0) - stacked.min(axis=0)),
+        static=static, concave=False, color=color)
 
 
 def robot_bodies(scene: Scene, nodes: Sequence[SceneNode]) -> tuple[RobotBody, list[RobotBody]]:
@@ -154,7 +152,7 @@ def robot_bodies(scene: Scene, nodes: Sequence[SceneNode]) -> tuple[RobotBody, l
     Parameters
     ----------
     scene:
-        The build (names the building body).
+        The build (only used in messages).
     nodes:
         Its scene nodes in world coordinates.
 
@@ -172,31 +170,39 @@ def robot_bodies(scene: Scene, nodes: Sequence[SceneNode]) -> tuple[RobotBody, l
     """
     structure = [n for n in nodes if n.kind != "furniture" and len(n.mesh.faces)]
     if not structure:
-        raise ExportError("robot export: the scene has no building geometry (no static "
-                          "walls, slabs or masses) to put in the world")
+        raise ExportError(f"robot export of '{scene.name}': the scene has no building "
+                          f"geometry (walls, slabs or masses) to put in the world")
     groups, materials = node_groups(structure, transform=WORLD_TO_ROS)
+    offsets = np.cumsum([0] + [len(g.vertices) for g in groups[:-1]])
     merged = MeshGroup("building", np.vstack([g.vertices for g in groups]),
-                       np.vstack(_offset_faces(groups)), "building")
+                       np.vstack([g.faces + k for g, k in zip(groups, offsets)]), "wall")
     building = RobotBody(
-        name="building", node=None, pose=RosPose((0.0, 0.0, 0.0), 0.0), groups=tuple(groups),
-        materials=materials, collisions=(merged,), mass=0.0, inertia=(0.0, 0.0, 0.0),
-        static=True, concave=True, color=node_color("wall", {}))
+        name="building", node=None, label="building", pose=RosPose((0.0, 0.0, 0.0), 0.0),
+        visual=tuple(groups), materials=materials, collisions=(merged,), mass=0.0,
+        inertia=(0.0, 0.0, 0.0), static=True, concave=True, color=node_color("wall", {}))
     furniture = [n for n in nodes if n.kind == "furniture" and len(n.mesh.faces)]
-    names = _unique([_identifier(n.path) for n in furniture])
+    names = _unique([_identifier(n.path.replace("/furniture/", "/")) for n in furniture])
     return building, [_item_body(n, name) for n, name in zip(furniture, names)]
 
 
-def _offset_faces(groups: Sequence[MeshGroup]) -> list[np.ndarray]:
-    out, offset = [], 0
-    for g in groups:
-        out.append(np.asarray(g.faces) + offset)
-        offset += len(g.vertices)
-    return out
+def _write_once(folder: Path, stem: str, text: str) -> str:
+    """Write ``text`` to ``<folder>/<stem>.<hash>.obj`` unless that file exists (the name
+    is derived from the content, so an existing file is this one: identical items share
+    files, and the URDF and SDF exporters share them in one output folder)."""
+    digest = hashlib.sha1(text.encode("utf-8")).hexdigest()[:12]
+    file_name = f"{stem}.{digest}.obj"
+    if not (folder / file_name).is_file():
+        atomic_write(folder / file_name, text)
+    return f"{MESH_DIR}/{file_name}"
 
 
 def write_body_meshes(bodies: Sequence[RobotBody], out_dir: Path, name: str
                       ) -> dict[str, BodyFiles]:
-    """Write every body's visual OBJ (+ MTL) and collision OBJs under ``meshes/``.
+    """Write the bodies' visual and collision OBJs and one MTL under ``meshes/``.
+
+    Files are named by the body's label and a hash of their content
+    (``meshes/<name>.<label>.<hash>.obj``), so items with equal meshes in their own
+    frames (the same model, size and yaw convention) share files.
 
     Returns
     -------
@@ -204,20 +210,19 @@ def write_body_meshes(bodies: Sequence[RobotBody], out_dir: Path, name: str
         Body name → its files, relative to ``out_dir``.
     """
     folder = Path(out_dir) / MESH_DIR
+    materials: dict[str, RGB] = {}
+    for body in bodies:
+        materials.update(body.materials)
+    mtl_name = f"{name}.mtl"
+    atomic_write(folder / mtl_name, mtl_text(materials))
+    header = "cga mesh: ROS frame axes (z up), metres, relative to its body's link frame"
     files: dict[str, BodyFiles] = {}
     for body in bodies:
-        stem = f"{name}.{body.name}"
-        header = (f"cga body '{body.name}': ROS frame (z up, metres), relative to the "
-                  f"body's link frame")
-        atomic_write(folder / f"{stem}.mtl", mtl_text(body.materials))
-        atomic_write(folder / f"{stem}.obj",
-                     obj_text(body.groups, mtl_file=f"{stem}.mtl", header=header))
-        collision_files = []
-        for k, part in enumerate(body.collisions):
-            part_name = f"{stem}.collision{k}.obj"
-            atomic_write(folder / part_name, obj_text([part], mtl_file=None,
-                                                      header=header + ", collision"))
-            collision_files.append(f"{MESH_DIR}/{part_name}")
-        files[body.name] = BodyFiles(f"{MESH_DIR}/{stem}.obj", f"{MESH_DIR}/{stem}.mtl",
-                                     tuple(collision_files))
+        visual = _write_once(folder, f"{name}.{body.label}",
+                             obj_text(body.visual, mtl_file=mtl_name, header=header))
+        collisions = tuple(
+            _write_once(folder, f"{name}.{body.label}.collision",
+                        obj_text([part], mtl_file=None, header=header + "; collision"))
+            for part in body.collisions)
+        files[body.name] = BodyFiles(visual, f"{MESH_DIR}/{mtl_name}", collisions)
     return files

@@ -3,7 +3,7 @@
 The plan exporter composes a :class:`Drawing` from a handful of primitives in paper
 coordinates (pixels, y down) and hands it to :func:`render_svg` (hand-written XML; SVG is
 just text) and :func:`render_png` (Pillow, drawn at ``supersample`` times the size and
-downsampled with a Lanczos filter, which gives smooth edges without matplotlib).
+averaged back down, which gives smooth edges without matplotlib).
 
 Both renderers see the same primitives, so the SVG and the PNG of a plan show exactly
 the same thing. Text is measured with the PNG's font (DejaVu Sans, Pillow's own font when
@@ -316,7 +316,15 @@ class _PngPainter:
 
 def render_png(drawing: Drawing, *, supersample: int = 3) -> bytes:
     """The drawing as PNG bytes (RGB), anti-aliased by drawing at ``supersample`` × size
-    and downsampling with a Lanczos filter."""
+    and averaging each ``supersample`` × ``supersample`` block of pixels.
+
+    Raises
+    ------
+    ValueError
+        The page size is not a whole number of pixels.
+    """
+    if drawing.width != int(drawing.width) or drawing.height != int(drawing.height):
+        raise ValueError(f"page size {drawing.width} × {drawing.height} must be whole pixels")
     painter = _PngPainter(drawing, supersample)
     for items in drawing.layers.values():
         for item in items:
@@ -328,8 +336,7 @@ def render_png(drawing: Drawing, *, supersample: int = 3) -> bytes:
                 painter.arc(item)
             else:
                 painter.text(item)
-    final = painter.image.convert("RGB").resize(
-        (round(drawing.width), round(drawing.height)), Image.Resampling.LANCZOS)
+    final = painter.image.convert("RGB").reduce(supersample)
     buffer = io.BytesIO()
-    final.save(buffer, format="PNG", optimize=True)
+    final.save(buffer, format="PNG")
     return buffer.getvalue()

@@ -24,7 +24,7 @@ from cga.scene import Scene, SceneNode
 
 from .palette import RGB, node_color
 
-__all__ = ["MeshGroup", "obj_text", "mtl_text", "node_groups", "export_obj"]
+__all__ = ["MeshGroup", "obj_text", "mtl_text", "node_material", "node_groups", "export_obj"]
 
 
 @dataclass(frozen=True)
@@ -85,10 +85,14 @@ def mtl_text(materials: Mapping[str, RGB]) -> str:
     return "".join(blocks)
 
 
-def _material_of(node: SceneNode) -> str:
+def node_material(node: SceneNode) -> tuple[str, RGB]:
+    """A node's material: per furniture model when the node has a ``color`` extra, else
+    per node kind; returns ``(name, colour)``."""
     if "color" in node.extras and node.kind == "furniture":
-        return f"furniture_{node.extras.get('model', 'item')}"
-    return node.kind
+        name = f"furniture_{node.extras.get('model', 'item')}"
+    else:
+        name = node.kind
+    return _safe(name), node_color(node.kind, node.extras)
 
 
 def node_groups(nodes: Sequence[SceneNode], transform: np.ndarray | None = None
@@ -115,8 +119,8 @@ def node_groups(nodes: Sequence[SceneNode], transform: np.ndarray | None = None
             continue
         if transform is not None:
             vertices = vertices @ np.asarray(transform).T
-        material = _material_of(node)
-        materials[_safe(material)] = node_color(node.kind, node.extras)
+        material, color = node_material(node)
+        materials[material] = color
         groups.append(MeshGroup(node.path, vertices, faces, material))
     return groups, materials
 

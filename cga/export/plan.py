@@ -25,6 +25,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 from shapely import affinity
@@ -58,6 +59,7 @@ _LEAF = Style(stroke=_INK, width=1.8)
 _SWING = Style(stroke="#7d7369", width=0.9, dash=(3.0, 2.5))
 _ENTRANCE = Style(fill="#c0392b")
 _ENTRANCE_TEXT = "entrance"
+_ENTRANCE_SIZE = 10.0
 
 
 @dataclass(frozen=True)
@@ -104,12 +106,10 @@ def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
     min_x, min_z, max_x, max_z = plan.footprint.bounds
     scale = min(_MAX_PX_PER_M, max(_MIN_PX_PER_M, _TARGET_PLAN_PX / max(
         max_x - min_x, max_z - min_z, 1e-9)))
-    entrance = _entrance_marker(plan)
+    entrance = _entrance_marker(plan, scale)
     if entrance is not None:  # make room for the marker outside the walls
-        reach = entrance.label_extent / scale
-        label = ShapelyPoint(*entrance.label_at).buffer(reach)
         min_x, min_z, max_x, max_z = unary_union(
-            [plan.footprint, entrance.arrow, label]).bounds
+            [plan.footprint, entrance.arrow, entrance.label_box]).bounds
     paper = _Paper(min_x, min_z, scale, _MARGIN, _HEADER + _MARGIN * 0.5)
     plan_w, plan_h = (max_x - min_x) * scale, (max_z - min_z) * scale
     column_x = _MARGIN + plan_w + _MARGIN
@@ -195,9 +195,11 @@ def _draw_item_name(drawing: Drawing, paper: _Paper, item: FurnitureItem,
         size = candidate
         if text_width(label, size) <= max(across, along):
             break
-    vertical = text_width(label, size) > across and along > across
+    vertical = text_width(label, size) > across and along > across and not item.non_collision
     cx, cy = paper.point(*footprint.centroid.coords[0])
-    if vertical:
+    if item.non_collision:  # rugs: name along the bottom edge, clear of what stands on them
+        position, angle = (cx, paper.point(min_x, max_z)[1] - 3), 0
+    elif vertical:
         position, angle = (cx + size * 0.35, cy), 90
     else:
         position, angle = (cx, cy + size * 0.35), 0
@@ -363,14 +365,15 @@ def _draw_doors(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
 @dataclass(frozen=True)
 class _Entrance:
     """The front-door marker in plan metres: an arrowhead outside the door pointing in,
-    and where its label goes (``label_extent``: half the label's width in pixels)."""
+    and its label: baseline anchor point, text anchor and the box the text covers."""
 
     arrow: Polygon
     label_at: tuple[float, float]
-    label_extent: float
+    anchor: Literal["start", "middle", "end"]
+    label_box: Polygon
 
 
-def _entrance_marker(plan: FloorPlan) -> _Entrance | None:
+def _entrance_marker(plan: FloorPlan, scale: float) -> _Entrance | None:
     door = plan.front_door()
     if door is None:
         return None
@@ -382,16 +385,26 @@ def _entrance_marker(plan: FloorPlan) -> _Entrance | None:
         outward = -outward
     apex, base = position + outward * 0.25, position + outward * 0.75
     arrow = Polygon([apex, base + u * 0.3, base - u * 0.3])
-    label_at = position + outward * (1.1 if abs(outward[1]) > 0.5 else 1.0)
-    return _Entrance(arrow, (float(label_at[0]), float(label_at[1])),
-                     text_width(_ENTRANCE_TEXT, 10, bold=True) / 2 + 4)
+    width = text_width(_ENTRANCE_TEXT, _ENTRANCE_SIZE, bold=True) / scale
+    height = _ENTRANCE_SIZE / scale
+    if abs(outward[1]) > 0.5:  # north or south wall: centred beyond the arrowhead
+        x, z = position + outward * 0.9
+        if outward[1] > 0:
+            z += height
+        anchor, left = "middle", x - width / 2
+    else:  # east or west wall: beside the arrowhead, reading away from the wall
+        x, z = position + outward * 0.85
+        z += height / 2
+        anchor, left = ("start", x) if outward[0] > 0 else ("end", x - width)
+    box = Polygon.from_bounds(left, z - height, left + width, z + 0.2 * height)
+    return _Entrance(arrow, (float(x), float(z)), anchor, box)
 
 
 def _draw_entrance(drawing: Drawing, paper: _Paper, entrance: _Entrance) -> None:
     drawing.add("doors", Area((paper.ring(entrance.arrow.exterior.coords[:-1]),), _ENTRANCE,
                               css_class="front-door"))
-    x, y = paper.point(*entrance.label_at)
-    drawing.add("doors", Text((x, y + 4), _ENTRANCE_TEXT, 10, "#c0392b", bold=True,
+    drawing.add("doors", Text(paper.point(*entrance.label_at), _ENTRANCE_TEXT, _ENTRANCE_SIZE,
+                              "#c0392b", entrance.anchor, bold=True,
                               css_class="front-door-label"))
 
 

@@ -89,4 +89,5 @@ def export_sdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: st
     bodies = [building, *items]
     files = write_body_meshes(bodies, out, name)
     world = atomic_write(out / f"{name}.world.sdf", world_as_sdf(name, bodies, files))
-    return [world] + [out / f for body in bodies for f in files[body.name].paths()]
+    return [world] + list(dict.fromkeys(
+        out / f for body in bodies for f in files[body.name].paths()))

@@ -120,4 +120,5 @@ def export_urdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: s
     }
     written.append(atomic_write(out / f"{name}.urdf.json",
                                 json.dumps(document, indent=2, sort_keys=True) + "\n"))
-    return written + [out / f for body in bodies for f in files[body.name].paths()]
+    return written + list(dict.fromkeys(
+        out / f for body in bodies for f in files[body.name].paths()))
