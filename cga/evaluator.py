@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import time
 from collections import defaultdict
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -81,7 +81,7 @@ class DerivedShape:
     rule: ast.Rule | None = None
     children: list["DerivedShape"] = field(default_factory=list)
 
-    def walk(self):
+    def walk(self) -> Iterator["DerivedShape"]:
         """This node and all nodes below it, depth first."""
         stack = [self]
         while stack:

@@ -13,12 +13,11 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from .build import STAGES
 from .model import FloorPlan
 from .scene import Scene
 
 __all__ = ["summary_dict", "print_summary"]
-
-_STAGES = ("parse", "derive", "meshing", "physics", "navigability", "export")
 
 
 def _floor_summary(plan: FloorPlan) -> dict[str, Any]:
@@ -70,9 +69,9 @@ def summary_dict(scene: Scene, *, out_dir: str | Path | None = None) -> dict[str
 
 
 def _timing_line(timings: Mapping[str, float]) -> str:
-    operations = {k: v for k, v in timings.items() if k not in _STAGES}
+    operations = {k: v for k, v in timings.items() if k not in STAGES}
     parts = []
-    for stage in _STAGES:
+    for stage in STAGES:
         if stage not in timings:
             continue
         text = f"{stage} {timings[stage]:.2f} s"
@@ -81,7 +80,7 @@ def _timing_line(timings: Mapping[str, float]) -> str:
                               sorted(operations.items(), key=lambda kv: -kv[1]))
             text += f" ({inner})"
         parts.append(text)
-    total = sum(timings.get(stage, 0.0) for stage in _STAGES)
+    total = sum(timings.get(stage, 0.0) for stage in STAGES)
     return " · ".join(parts) + f" · total {total:.2f} s"
 
 
