@@ -379,23 +379,23 @@ class Placer:
         return f"{reason}; nearest wall: {blocked[0].describe()}" if blocked else reason
 
     def free(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
-        """Put a free-standing item at the free spot nearest ``start``."""
+        """Put a free-standing item (a dining or meeting table) at the free spot nearest
+        the middle of the room, else nearest its start or a few random points."""
         rotations = [0, 1] if self.rng.random() < 0.5 else [1, 0]
         minx, minz, maxx, maxz = self.layout.interior.bounds
         extra = self.rng.uniform((minx, minz), (maxx, maxz), size=(_FREE_SAMPLES, 2))
         blocked: list[Conflict] = []
 
         def poses() -> Iterator[Pose]:
-            for rotation in rotations:
-                pose = Pose(start[0], start[1], rotation)
-                conflict = self._conflict(spec, pose)
-                if conflict is None:
-                    yield pose
-                else:
-                    blocked.append(conflict)
-            for point in [start, *map(tuple, extra)]:
+            for point in [self._room_centre(), start, *map(tuple, extra)]:
                 options = []
                 for rotation in rotations:
+                    pose = Pose(point[0], point[1], rotation)
+                    conflict = self._conflict(spec, pose)
+                    if conflict is None:
+                        options.append((0.0, rotation, 0, pose))
+                        continue
+                    blocked.append(conflict)
                     for axis in (0, 1):
                         lo, hi = (minx, maxx) if axis == 0 else (minz, maxz)
                         for pose in self._free_poses(spec, rotation, axis, point[1 - axis],
