@@ -1,4 +1,4 @@
-"""The ``cga`` command line: ``cga build`` and ``cga check``.
+"""The ``cga`` command line: ``cga build``, ``cga check`` and ``cga batch``.
 
 Every user error is a :class:`~cga.errors.CGAError`: its message (file:line:column, the
 line and a caret for grammar errors) goes to stderr and the exit status is 2, with no
@@ -97,10 +97,67 @@ def _run_check(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
+    parser.add_argument("-n", "--count", type=int, required=True, metavar="N",
+                        help="number of seeds to build")
+    parser.add_argument("--seed-start", type=int, default=0, metavar="S",
+                        help="first seed (default 0)")
+    parser.add_argument("--jobs", type=int, default=1, metavar="J",
+                        help="worker processes (default 1)")
+    parser.add_argument("--out", metavar="DIR",
+                        help="output folder (default out/<grammar name>-batch)")
+    parser.add_argument("--no-physics", action="store_true",
+                        help="skip the physics and navigability checks")
+    parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
+                        help="extra outputs per seed, comma separated: obj,urdf,sdf,map")
+    output = parser.add_mutually_exclusive_group()
+    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    output.add_argument("--json", action="store_true",
+                        help="print the batch report (JSON) on stdout")
+
+
+def _run_batch(args: argparse.Namespace) -> int:
+    import json
+    from pathlib import Path
+
+    from .batch import run_batch
+    from .export import DEFAULT_FORMATS
+
+    out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.grammar).stem}-batch"
+    options = {"physics": not args.no_physics,
+               "formats": list(dict.fromkeys([*DEFAULT_FORMATS, *args.export]))}
+    kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
+                  build_options=options)
+    if args.quiet or args.json:
+        report = run_batch(args.grammar, **kwargs)
+    else:
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
+
+        columns = (*Progress.get_default_columns()[:1], BarColumn(), MofNCompleteColumn(),
+                   TimeRemainingColumn())
+        with Progress(*columns) as progress:
+            task = progress.add_task("building", total=args.count)
+            report = run_batch(args.grammar, **kwargs,
+                               on_progress=lambda done, total: progress.update(
+                                   task, completed=done, total=total))
+    data = report.to_dict()
+    if args.json:
+        print(json.dumps({**data, "out_dir": str(out_dir)}, indent=2))
+    elif not args.quiet:
+        print(f"{data['houses']} builds ({data['built_now']} now) in {out_dir}: "
+              f"{data['validity_rate']:.1%} valid, {data['placement_rate']:.1%} of items placed, "
+              f"{data['mean_seconds']:.2f} s mean (p95 {data['p95_seconds']:.2f} s), "
+              f"{data['errors']} errors")
+    return 0
+
+
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None],
                           Callable[[argparse.Namespace], int]]] = {
     "build": ("derive, check and export a building", _add_build_arguments, _run_build),
     "check": ("check a grammar without building it", _add_check_arguments, _run_check),
+    "batch": ("build many seeds into one folder each, with a manifest (resumable)",
+              _add_batch_arguments, _run_batch),
 }
 """Subcommand name → (help, add_arguments, run)."""
 
