@@ -152,20 +152,23 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     """The shadow, in plan ``(x, z)``, of the part of ``node`` between heights ``y0`` and
     ``y1`` (an empty geometry when none of it is).
 
-    A furniture node with convex parts is the union of its parts; other meshes are used
-    whole. A mesh that is not a watertight solid (an open surface) is taken triangle by
-    triangle: the shadow of its triangles clipped to the band, thickened by 1 mm so that
-    a vertical sheet still blocks the cells it crosses.
+    A furniture node made of convex parts is the union of its parts' shadows, computed
+    directly (the slice of a convex solid between two planes is convex, so its shadow is
+    the hull of its vertices in the band and of its edges' crossings with the planes).
+    Other meshes are clipped and projected with manifold3d. A mesh that is not a
+    watertight solid (an open surface) is taken triangle by triangle: the shadow of its
+    triangles clipped to the band, thickened by 1 mm so that a vertical sheet still
+    blocks the cells it crosses.
     """
     lo, hi = node.mesh.bounds
     if hi[1] <= y0 or lo[1] >= y1:
         return Polygon()
-    pieces = [m for m in (node.parts or (node.mesh,)) if len(m.faces)]
-    solids = [as_manifold(mesh) for mesh in pieces]
-    if not solids or any(s is None for s in solids):
+    if node.parts and node.extras.get("convex_parts", True):
+        shadows = [_convex_shadow(part, y0, y1) for part in node.parts if len(part.faces)]
+        return shapely.union_all([s for s in shadows if not s.is_empty])
+    solid = as_manifold(node.mesh)
+    if solid is None:
         return _sheet_footprint(node.mesh, y0, y1)
-    solid = solids[0] if len(solids) == 1 else manifold3d.Manifold.batch_boolean(
-        solids, manifold3d.OpType.Add)
     band = (solid.transform(_TO_PLAN)
             .trim_by_plane((0.0, 0.0, 1.0), -y1)
             .trim_by_plane((0.0, 0.0, -1.0), y0))
@@ -176,6 +179,24 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     if not polygons:
         return Polygon()
     return polygons[0] if len(polygons) == 1 else shapely.MultiPolygon(polygons)
+
+
+def _convex_shadow(part: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:
+    """The shadow of the slice of a convex part between heights ``y0`` and ``y1``."""
+    vertices = np.asarray(part.vertices, dtype=float)
+    y = vertices[:, 1]
+    points = [vertices[(y >= y0) & (y <= y1)][:, [0, 2]]]
+    edges = np.asarray(part.faces)[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    a, b = vertices[edges[:, 0]], vertices[edges[:, 1]]
+    for h in (y0, y1):
+        crossing = (a[:, 1] - h) * (b[:, 1] - h) < 0
+        t = (h - a[crossing, 1]) / (b[crossing, 1] - a[crossing, 1])
+        points.append((a[crossing] + t[:, None] * (b[crossing] - a[crossing]))[:, [0, 2]])
+    cloud = np.concatenate(points)
+    if len(cloud) == 0:
+        return Polygon()
+    hull = shapely.MultiPoint(cloud).convex_hull
+    return hull if isinstance(hull, Polygon) else hull.buffer(_SHEET)
 
 
 def _sheet_footprint(mesh: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:

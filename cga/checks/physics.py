@@ -73,10 +73,20 @@ _REST_SECONDS = 0.2
 _CHECK_EVERY = 0.05
 """Simulated seconds between two rest checks."""
 
-_CONTACT_MARGINS = 0.002
-"""m: pybullet's ``getClosestPoints`` distance between two shapes that just touch. Every
-shape here (a convex hull of a compound, a triangle mesh) carries Bullet's default
-collision margin of 1 mm, and the reported distance includes both."""
+_MARGIN = 0.001
+"""m: Bullet's collision margin around every shape here (convex hulls of a compound,
+triangle meshes). A shape acts as if inflated by it, and pybullet's distances include it."""
+
+_SHRINK = 2 * _MARGIN
+"""m: each item's convex parts are shrunk by this much per face. With the margin added
+back, an item's surface lies 1 mm inside its true one while the structure's lies 1 mm
+outside, so an item standing on the floor or flush against a wall touches it exactly,
+and two items placed side by side keep a 2 mm gap. Unshrunk, every touching pair would
+start 2 mm "deep" in each other and the contact solver would push them apart."""
+
+_INFLATION = {"item": _MARGIN - _SHRINK, "static": _MARGIN}
+"""How far each kind of body's collision surface lies outside its true surface (m); a
+reported distance minus both inflations is the true distance."""
 
 _OVERLAP_EPS = 1e-4
 """m: overlaps shallower than this (numerical noise of touching shapes) count as touching."""
@@ -252,8 +262,9 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
     Cost is dominated by the simulation: about (items × settled steps) convex-vs-mesh
     contact tests. Overlap is measured with ``getClosestPoints`` (distance ≤ 0) before
     any step, between each item and every body whose bounding box meets its own; the
-    collision margins pybullet adds around the two shapes (1 mm each) are subtracted, so an
-    item standing on the floor has penetration 0.
+    collision margins pybullet adds around shapes (1 mm) and the 2 mm by which item parts
+    are shrunk to offset them are accounted for, so an item standing on the floor has
+    penetration 0.
     """
     for label, value in (("settle_seconds", settle_seconds), ("timestep", timestep),
                          ("penetration_tol", penetration_tol), ("move_tol", move_tol),
@@ -313,6 +324,7 @@ class _World:
     folder: Path
     timestep: float
     paths: dict[int, str] = field(default_factory=dict)
+    kinds: dict[int, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.pb.setGravity(0.0, -GRAVITY, 0.0, physicsClientId=self.client)
@@ -330,7 +342,7 @@ class _World:
         if shape < 0:
             raise RuntimeError(f"pybullet rejected the mesh of {node.path}")
         uid = self.pb.createMultiBody(0.0, shape, physicsClientId=self.client)
-        self.paths[uid] = node.path
+        self.paths[uid], self.kinds[uid] = node.path, "static"
         return uid
 
     def add_item(self, node: SceneNode, cache_dir: Path | None) -> _Body:
@@ -341,7 +353,7 @@ class _World:
         weights = volumes if volumes.sum() > 0 else np.ones(len(parts))
         centroid = (centres * weights[:, None]).sum(axis=0) / weights.sum()
         mass = _mass(node, float(volumes.sum()))
-        text = obj_text(parts, offset=centroid)
+        text = obj_text([_shrunk(p) for p in parts], offset=centroid)
         path = self.folder / f"{hashlib.sha1(text.encode()).hexdigest()}.obj"
         if not path.exists():
             path.write_text(text, encoding="utf-8")
@@ -352,7 +364,7 @@ class _World:
         uid = self.pb.createMultiBody(mass, shape, basePosition=centroid.tolist(),
                                       physicsClientId=self.client)
         self.pb.changeDynamics(uid, -1, restitution=0.0, physicsClientId=self.client)
-        self.paths[uid] = node.path
+        self.paths[uid], self.kinds[uid] = node.path, "item"
         return _Body(uid=uid, mass=mass, start=centroid, bottom=float(node.mesh.bounds[0][1]),
                      path=node.path)
 
@@ -383,7 +395,9 @@ class _World:
                                                   physicsClientId=self.client)
                 if not points:
                     continue
-                depth = -(min(p[8] for p in points) + _CONTACT_MARGINS)
+                true_distance = (min(p[8] for p in points) + _INFLATION["item"]
+                                 + _INFLATION[self.kinds[other]])
+                depth = -true_distance
                 if depth > max(deepest, _OVERLAP_EPS):
                     deepest, which = depth, self.paths[other]
             out.append((deepest, which))
@@ -434,6 +448,16 @@ def _convex_parts(node: SceneNode, cache_dir: Path | None) -> list[trimesh.Trime
     if len(node.mesh.faces) == 0:
         raise ValueError(f"furniture node {node.path} has no geometry")
     return list(convex_decomposition(node.mesh, cache=cache_dir))
+
+
+def _shrunk(part: trimesh.Trimesh) -> trimesh.Trimesh:
+    """The part scaled about its box centre so each axis-aligned face moves in by
+    :data:`_SHRINK` (parts thinner than 4 × that keep at least half their size)."""
+    lo, hi = part.bounds
+    centre, extent = (lo + hi) / 2, hi - lo
+    scale = np.maximum(extent - 2 * _SHRINK, extent / 2) / np.maximum(extent, 1e-12)
+    return trimesh.Trimesh(vertices=(np.asarray(part.vertices) - centre) * scale + centre,
+                           faces=part.faces, process=False)
 
 
 def _mass(node: SceneNode, volume: float) -> float:
