@@ -30,14 +30,13 @@ tried first. Only if that fails too is there no typing.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
-__all__ = ["RoomSet", "RuleSpec", "Placement", "Failure", "Unplaceable", "place_rules",
-           "room_fits"]
+__all__ = ["RoomSet", "RuleSpec", "Placement", "Failure", "Unplaceable", "place_rules"]
 
 
 @dataclass(frozen=True)
@@ -109,21 +108,16 @@ class Unplaceable:
 
 @dataclass
 class _SearchStats:
+    """What the searches of one call share: undone placements, dead ends seen."""
+
     backtracks: int = 0
     deepest: Failure | None = None
     deepest_depth: int = -1
     first_failure: Failure | None = None
 
 
-def room_fits(rooms: RoomSet, rule: RuleSpec, i: int) -> bool:
-    """Whether room ``i`` is big enough for ``rule`` (and can take the front door if the
-    rule's room gets it)."""
-    if rooms.areas[i] < rule.min_area:
-        return False
-    return not (rule.outside and rooms.entrances is not None and i not in rooms.entrances)
-
-
-def _bits(mask: int):
+def _bits(mask: int) -> Iterator[int]:
+    """The indices of the set bits of ``mask``, lowest first."""
     while mask:
         low = mask & -mask
         yield low.bit_length() - 1
@@ -158,19 +152,14 @@ def _crowded(domains: dict[int, int]) -> tuple[tuple[int, ...], int] | None:
     return None
 
 
-class _Search:
-    """One depth-first search with a fixed first rule and a fixed exempt rule."""
+class _Masks:
+    """The problem as bitmasks, shared by every search of one call: adjacency per room,
+    fitting rooms per rule, listed rules per rule (``nbr``; never the rule itself)."""
 
-    def __init__(self, rooms: RoomSet, rules: Sequence[RuleSpec], rank: Sequence[int],
-                 exempt: int | None, stats: _SearchStats):
-        n, m = len(rooms), len(rules)
-        self.n, self.m = n, m
-        self.areas = rooms.areas
+    def __init__(self, rooms: RoomSet, rules: Sequence[RuleSpec]):
+        n = len(rooms)
+        self.n, self.m = n, len(rules)
         self.adj = [sum(1 << j for j in rooms.adjacency[i]) for i in range(n)]
-        self.rank = rank
-        self.exempt = exempt
-        self.stats = stats
-        self.min_area = [r.min_area for r in rules]
         entrances = (sum(1 << i for i in rooms.entrances) if rooms.entrances is not None
                      else (1 << n) - 1)
         self.fits = []
@@ -180,8 +169,27 @@ class _Search:
         self.nbr = [sum(1 << j for j, other in enumerate(rules)
                         if j != k and other.type in rule.neighbours)
                     for k, rule in enumerate(rules)]
-        self.room_of = [-1] * m
-        self.free = (1 << n) - 1
+
+    def support(self, k: int) -> int:
+        """How many (room, neighbouring room) pairs could satisfy rule k on their own."""
+        partners = 0
+        for j in _bits(self.nbr[k]):
+            partners |= self.fits[j]
+        return sum(bin(self.adj[i] & partners).count("1") for i in _bits(self.fits[k]))
+
+
+class _Search:
+    """One depth-first search with a fixed first rule and a fixed exempt rule."""
+
+    def __init__(self, masks: _Masks, rank: Sequence[int], exempt: int | None,
+                 stats: _SearchStats):
+        self.m = masks.m
+        self.adj, self.fits, self.nbr = masks.adj, masks.fits, masks.nbr
+        self.rank = rank
+        self.exempt = exempt
+        self.stats = stats
+        self.room_of = [-1] * masks.m
+        self.free = (1 << masks.n) - 1
         self.placed = 0
 
     # -- state queries -------------------------------------------------------------
@@ -225,8 +233,9 @@ class _Search:
                 return k
         return None
 
-
     def ordered(self, now: int, later: int) -> list[int]:
+        """Candidate rooms to try: those satisfying the rule now first, each group in
+        the call's random room order."""
         return (sorted(_bits(now), key=self.rank.__getitem__)
                 + sorted(_bits(later), key=self.rank.__getitem__))
 
@@ -297,29 +306,20 @@ class _Search:
         return self._branch(k, self.ordered(now, later))
 
 
-def _support(rooms: RoomSet, rules: Sequence[RuleSpec], k: int) -> int:
-    """How many (room, neighbouring room) pairs could satisfy rule k, ignoring the others."""
-    partners = [r for r in rules if r is not rules[k] and r.type in rules[k].neighbours]
-    return sum(1 for i in range(len(rooms)) if room_fits(rooms, rules[k], i)
-               for j in rooms.adjacency[i] if any(room_fits(rooms, p, j) for p in partners))
-
-
-def _exemption_order(rooms: RoomSet, rules: Sequence[RuleSpec],
-                     first: int) -> list[int | None]:
-    """The searches to run: no exemption, then each rule exempt, the hardest first
-    (fewest supporting pairs; ties: the first rule, then table order).
+def _exemptions(masks: _Masks, first: int) -> list[int]:
+    """The rules to try as the one without a neighbour, hardest first (fewest supporting
+    pairs; ties: the first rule, then table order).
 
     A rule without any supporting pair can only be satisfied by exemption, so it is the
     only one worth exempting; two such rules make every search futile.
     """
-    support = [_support(rooms, rules, k) for k in range(len(rules))]
+    support = [masks.support(k) for k in range(masks.m)]
     hopeless = [k for k, count in enumerate(support) if count == 0]
     if len(hopeless) > 1:
         return []
     if hopeless:
         return hopeless
-    rest = sorted(range(len(rules)), key=lambda k: (support[k], k != first, k))
-    return [None, *rest]
+    return sorted(range(masks.m), key=lambda k: (support[k], k != first, k))
 
 
 def place_rules(rooms: RoomSet, rules: Sequence[RuleSpec], *, first: int,
@@ -341,7 +341,7 @@ def place_rules(rooms: RoomSet, rules: Sequence[RuleSpec], *, first: int,
     -------
     Placement | Unplaceable
         The placement, or, when none exists, the deepest dead end of every search tried
-        (for :func:`explain_failure`).
+        (for :func:`.explain.explain_failure`).
 
     Notes
     -----
@@ -357,16 +357,21 @@ def place_rules(rooms: RoomSet, rules: Sequence[RuleSpec], *, first: int,
     if not rules:
         return Placement(rooms=(), exempt=None, first_failure=None, backtracks=0)
     rank = [int(r) for r in rng.permutation(len(rooms))]
-    options = _exemption_order(rooms, rules, first)
-    failures: list[Failure] = []
+    masks = _Masks(rooms, rules)
     stats = _SearchStats()
-    for exempt in options:
-        search = _Search(rooms, rules, rank, exempt, stats)
-        start = first if exempt is None else exempt
-        if search.run(start):
+    failures: list[Failure] = []
+    exempt: int | None = None
+    options: list[int] | None = None  # computed once the search without exemption fails
+    while True:
+        search = _Search(masks, rank, exempt, stats)
+        if search.run(first if exempt is None else exempt):
             return Placement(rooms=tuple(search.room_of), exempt=exempt,
                              first_failure=stats.first_failure, backtracks=stats.backtracks)
         if stats.deepest is not None:
             failures.append(stats.deepest)
         stats.deepest, stats.deepest_depth = None, -1
-    return Unplaceable(tuple(failures))
+        if options is None:
+            options = _exemptions(masks, first)
+        if not options:
+            return Unplaceable(tuple(failures))
+        exempt = options.pop(0)

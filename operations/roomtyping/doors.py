@@ -146,13 +146,22 @@ def _face_offset(wall: Wall, thickness: float) -> float:
     return thickness if wall.outer else thickness / 2
 
 
-def _swing_polygon(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
-                   room: int, thickness: float) -> Polygon:
+def _leaf_frame(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
+                room: int, thickness: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(pivot, along, normal): the hinge point on the room-side face of the wall, the
+    unit vector from the hinge to the other jamb and the unit vector into ``room``
+    (``Wall.rooms`` is (left, right) walking from start to end)."""
     d = wall.direction
     normal = np.array([-d[1], d[0]]) if room == wall.rooms[0] else np.array([d[1], -d[0]])
     jamb = centre - width / 2 if hinge == "start" else centre + width / 2
     along = d if hinge == "start" else -d
     pivot = np.asarray(wall.point_at(jamb)) + normal * _face_offset(wall, thickness)
+    return pivot, along, normal
+
+
+def _swing_polygon(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
+                   room: int, thickness: float) -> Polygon:
+    pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room, thickness)
     angles = np.linspace(0.0, math.pi / 2, 9)
     arc = pivot + width * (np.cos(angles)[:, None] * along + np.sin(angles)[:, None] * normal)
     return Polygon([tuple(pivot), *map(tuple, arc)])
@@ -195,8 +204,15 @@ def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
 
 def _sweep_fits(room: Room, wall: Wall, centre: float, width: float,
                 hinge: Literal["start", "end"], thickness: float) -> bool:
-    sweep = _swing_polygon(wall, centre, width, hinge, room.id, thickness)
-    return room.interior.buffer(1e-6).covers(sweep)
+    """Whether the square the leaf sweeps (the quarter circle's bounding square, a hair
+    smaller so the face it starts from counts as inside) lies in the room's free floor."""
+    pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room.id, thickness)
+    eps = 1e-6
+    corner = pivot + (along + normal) * eps
+    reach = width - 2 * eps
+    square = [corner, corner + along * reach, corner + (along + normal) * reach,
+              corner + normal * reach]
+    return room.interior.covers(Polygon(square))
 
 
 def door_opening(door: Door, plan: FloorPlan) -> Opening:

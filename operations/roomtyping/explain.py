@@ -12,13 +12,21 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from .backtrack import Failure, RoomSet, RuleSpec, room_fits
+from .backtrack import Failure, RoomSet, RuleSpec
 
 __all__ = ["explain_failure", "static_reasons"]
 
 
 def _area(value: float) -> str:
     return f"{value:.1f} m²"
+
+
+def _fits(rooms: RoomSet, rule: RuleSpec, i: int) -> bool:
+    """Whether room ``i`` is big enough for ``rule`` (and can take the front door if the
+    rule's room gets it)."""
+    if rooms.areas[i] < rule.min_area:
+        return False
+    return not (rule.outside and rooms.entrances is not None and i not in rooms.entrances)
 
 
 def _a(name: str) -> str:
@@ -86,7 +94,7 @@ def _no_room(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec,
     if not free:
         return f"no free room is left for {rule.type}"
     door = rule.outside and rooms.entrances is not None
-    fitting = [i for i in free if room_fits(rooms, rule, i)]
+    fitting = [i for i in free if _fits(rooms, rule, i)]
     if not fitting:
         if door:
             doors = [i for i in free if i in rooms.entrances]
@@ -122,7 +130,7 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
     reasons: list[str] = []
     largest = max(rooms.areas, default=0.0)
     for rule in rules:
-        if not any(room_fits(rooms, rule, i) for i in range(len(rooms))):
+        if not any(_fits(rooms, rule, i) for i in range(len(rooms))):
             if rule.min_area > largest:
                 reasons.append(f"{rule.type} needs ≥ {_area(rule.min_area)}; the largest room "
                                f"has {_area(largest)}")
@@ -146,7 +154,7 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
     lonely: list[str] = []
     for rule in rules:
         partners = [r for r in rules if r is not rule and r.type in rule.neighbours]
-        if any(room_fits(rooms, rule, i) and room_fits(rooms, p, j)
+        if any(_fits(rooms, rule, i) and _fits(rooms, p, j)
                for i in range(len(rooms)) for j in rooms.adjacency[i] for p in partners):
             continue
         if not partners:

@@ -177,3 +177,14 @@ def test_existing_openings_on_inner_walls_are_respected():
     plan = plan.with_changes(walls=tuple(blocked if w.id == wall.id else w for w in plan.walls))
     sites = door_sites(plan, door_spans(plan), 0.9)
     assert (0, 1) not in sites.inner
+
+
+def test_leaf_swings_into_the_smaller_room_when_the_bigger_is_too_narrow():
+    # a 30 m² corridor only 0.7 m deep inside its walls, and a 24 m² room
+    plan = plan_from_rectangles([(0, 0, 30, 1.0), (0, 1.0, 6, 5)])
+    table = rules("Corridor;1;1;Room;1;1;0", "Room;1;0;Corridor;0;1;0")
+    typed = type_plan(plan, table, np.random.default_rng(0))
+    (door,) = [d for d in typed.doors if not d.is_front]
+    assert typed.room(0).area > typed.room(1).area
+    assert door.swing_room == 1
+    assert typed.room(1).interior.buffer(1e-6).covers(door_swing(door, typed))
