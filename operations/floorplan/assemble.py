@@ -8,7 +8,7 @@ wall (its id is the DCEL edge number), and outer walls get their windows.
 from __future__ import annotations
 
 import shapely
-from shapely.geometry import LineString, Polygon
+from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
 from cga.model import FloorPlan, FloorSettings, Room, Wall
@@ -60,12 +60,13 @@ def plan_from_dcel(dcel: DCEL, *, settings: FloorSettings, index: int, elevation
         walls.append(Wall(h.edge, h.start, h.end, outer, (h.face.id, h.twin.face.id), t))
     walls.sort(key=lambda w: w.id)
 
+    # Inner walls take t/2 off each side of their edge, outer walls t inside the
+    # footprint: the room shrunk by t/2 (a mitred offset keeps rectilinear corners
+    # square) within the footprint shrunk by t.
     polygons = [Polygon(dcel.points(f)) for f in dcel.faces]
-    inner_bands = shapely.union_all([
-        LineString([w.start, w.end]).buffer(t / 2, cap_style="square", join_style="mitre")
-        for w in walls if not w.outer])
     shrunk = footprint.buffer(-t, join_style="mitre")
-    interiors = shapely.difference(shapely.intersection(polygons, shrunk), inner_bands, grid_size=_GRID)
+    interiors = shapely.intersection(shapely.buffer(polygons, -t / 2, join_style="mitre"), shrunk,
+                                     grid_size=_GRID)
     interiors = shapely.simplify(interiors, 0.0)  # drop the collinear vertices of T-junctions
     rooms = []
     for face, polygon, interior in zip(dcel.faces, polygons, interiors):

@@ -25,7 +25,7 @@ the longest feasible one is taken.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -41,6 +41,7 @@ SQUARE_RATIO = 1.1
 
 Point = tuple[float, float]
 _AXES: dict[str, int] = {"x": 0, "z": 1}
+_WIDTH_SLACK = 1e-4  # m; cut positions are on a 1 cm grid, so real violations are larger
 
 
 @dataclass(frozen=True)
@@ -155,10 +156,11 @@ def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator,
 
 
 def _split_largest(dcel: DCEL, rng: np.random.Generator, rules: _Rules) -> Cut | None:
-    leaves = sorted(dcel.faces, key=lambda f: (-dcel.area(f), f.id))
-    for face in leaves:
-        ring = dcel.points(face)
-        if signed_area(ring) < 2 * rules.min_area - EPS:
+    rings = [(f, dcel.points(f)) for f in dcel.faces]
+    areas = [signed_area(ring) for _, ring in rings]
+    for k in sorted(range(len(rings)), key=lambda k: (-areas[k], k)):
+        face, ring = rings[k]
+        if areas[k] < 2 * rules.min_area - EPS:
             break  # sorted by area: no smaller leaf can hold two rooms either
         chosen = _choose_cut(ring, rng, rules)
         if chosen is not None:
@@ -208,15 +210,15 @@ def _straight_vertices(ring: list[Point]) -> list[bool]:
     return out
 
 
-def _candidates(drawn: float, marks: list[float], rules: _Rules) -> list[float]:
+def _candidates(drawn: float, marks: list[float], rules: _Rules) -> Iterator[float]:
     """Allowed cut positions, best first.
 
     ``marks`` are the leaf's vertex coordinates along the axis (its corners and the ends
     of walls meeting its edges). A cut lies strictly inside the leaf's extent and either
     on a mark (lining up with that corner or wall) or at least ``min_offset`` from every
-    mark. A drawn position closer than that to a mark is moved onto it; then come the
-    other positions inside the ``cut_range`` window, nearest to the drawn one first, then
-    those outside it.
+    mark. The drawn position comes first, snapped to the grid, or moved onto a mark
+    closer than ``min_offset``; then other positions inside the ``cut_range`` window,
+    nearest to the drawn one first, then those outside it (computed only when needed).
     """
     grid, m, w = rules.grid, rules.min_offset, rules.min_width
     lo, hi = marks[0], marks[-1]
@@ -231,15 +233,16 @@ def _candidates(drawn: float, marks: list[float], rules: _Rules) -> list[float]:
         return lo + EPS < c < hi - EPS and all(abs(c - k) >= m - 1e-9 or abs(c - k) <= EPS for k in marks)
 
     near = sorted((k for k in marks if abs(drawn - k) < m and allowed(k)), key=lambda k: abs(k - drawn))
-    raw = [round(round(drawn / grid) * grid, 10)] + marks
+    first = near[0] if near else round(round(drawn / grid) * grid, 10)
+    if allowed(first):
+        yield first
+    raw = marks + [up(v) for v in np.linspace(lo, hi, 21)[1:-1]]
     for k in marks:
         for d in (m, w, w + m):
             raw += [up(k + d), down(k - d)]
-    raw += [up(v) for v in np.linspace(lo, hi, 21)[1:-1]]
     window = (lo + rules.cut_range[0] * (hi - lo) - EPS, lo + rules.cut_range[1] * (hi - lo) + EPS)
-    ranked = sorted({c for c in raw if allowed(c)},
-                    key=lambda c: (not window[0] <= c <= window[1], abs(c - drawn), c))
-    return near[:1] + [c for c in ranked if c not in near[:1]]
+    yield from sorted({c for c in raw if c != first and allowed(c)},
+                      key=lambda c: (not window[0] <= c <= window[1], abs(c - drawn), c))
 
 
 def _chords(ring: list[Point], k: int, c: float) -> list[tuple[_Crossing, _Crossing]]:
@@ -303,9 +306,15 @@ def _valid_room(points: list[Point], rules: _Rules) -> bool:
 
 
 def _wide_enough(points: list[Point], width: float) -> bool:
-    """Every point of the polygon lies in a ``width`` square inside it (morphological
-    opening with a square; mitred offsets are exact for axis-aligned edges)."""
+    """Every point of the polygon lies in a ``width`` square inside it.
+
+    A morphological opening with a square: mitred offsets are exact for axis-aligned
+    edges. The square is 0.2 mm smaller than ``width`` so rooms exactly ``width`` wide
+    erode to a thin strip rather than to nothing, and the mitre limit keeps the acute
+    ends of such strips from growing spikes when dilated.
+    """
     poly = Polygon(points)
-    r = width / 2 - 1e-6
-    opened = poly.buffer(-r, join_style="mitre").buffer(r, join_style="mitre")
+    r = width / 2 - _WIDTH_SLACK
+    eroded = poly.buffer(-r, join_style="mitre", mitre_limit=2.0)
+    opened = eroded.buffer(r, join_style="mitre", mitre_limit=2.0).intersection(poly)
     return opened.area >= poly.area * (1 - 1e-9) - 1e-6

@@ -1,0 +1,144 @@
+"""The make_floor operation: arguments, the plan it attaches, diagnostics, errors."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from shapely.geometry import Polygon, box
+
+from cga.errors import DerivationError
+from cga.evaluator import derive
+from cga.operations import OperationRegistry
+from cga.operations.base import OperationContext
+from cga.operations.make_floor import MakeFloor
+from cga.parser import parse_file
+from cga.shape import Face, Mass, Shape
+from dcel_checks import validate_plan
+
+DEMO = Path(__file__).resolve().parents[3] / "demos" / "house.grammar"
+
+
+def storey(footprint=box(0, 0, 14, 10), base=3.0, height=3.0, floor=1, symbol="UpperFloor", path=None):
+    mass = Mass(footprint, base, height)
+    return Shape(symbol, path or ("Lot", "Body", f"{symbol}[{floor}]"), mass.scope(), mass,
+                 {"floor": floor, "index": floor})
+
+
+def args(split=4, wall=0.2, windows=(2, 1.2, 1.2), door=(0.9, 2.1), **kw):
+    out = {"split": split, "wallWidth": wall, "windows": windows, "doorWidth": door[0],
+           "doorHeight": door[1]}
+    defaults = {p.name: p.default for p in MakeFloor.params if not p.required}
+    return defaults | out | kw
+
+
+def context(seed=0, rng_seed=0):
+    reports = []
+    ctx = OperationContext(rng=np.random.default_rng(rng_seed), units=1.0,
+                           resolve=lambda p, k="rules": p, report=reports.append, span=None,
+                           successor_count=1, seed=seed)
+    return ctx, reports
+
+
+def test_registry_entry_is_make_floor():
+    assert isinstance(OperationRegistry()["make_floor"], MakeFloor)
+
+
+def test_apply_attaches_a_plan_and_keeps_the_shape():
+    shape = storey()
+    ctx, reports = context()
+    [child] = MakeFloor().apply(shape, args(), ctx)
+    assert child.successor == 0 and child.geometry is shape.geometry and child.scope == shape.scope
+    plan = child.plan
+    validate_plan(plan)
+    assert (plan.index, plan.elevation, plan.height, plan.is_top) == (1, 3.0, 3.0, False)
+    assert len(plan.rooms) == 5 and reports == []
+    s = plan.settings
+    assert (s.wall_thickness, s.windows_per_wall, s.window_width, s.window_height, s.window_sill,
+            s.door_width, s.door_height) == (0.2, 2, 1.2, 1.2, 0.9, 0.9, 2.1)
+    assert plan.footprint.equals(box(0, 0, 14, 10))
+    assert plan.doors == () and len(plan.windows) > 0
+    assert all(o.kind == "window" for w in plan.walls for o in w.openings)
+
+
+def test_keyword_options_reach_the_partition():
+    ctx, _ = context()
+    [child] = MakeFloor().apply(storey(), args(split=3, min_room_width=4.0, min_room_area=20.0,
+                                               cut_range=(0.5, 0.5), window_sill=1.0), ctx)
+    plan = child.plan
+    assert all(r.area >= 20.0 for r in plan.rooms)
+    assert all(min(b[2] - b[0], b[3] - b[1]) >= 4.0 for b in (r.polygon.bounds for r in plan.rooms))
+    assert {w.sill for w in plan.windows} == {1.0}
+    assert any(w.start[0] == 7.0 for w in plan.walls if not w.outer)  # first cut at 50 %
+
+
+def test_each_floor_its_own_layout_unless_same_layout():
+    def layout(shape, seed, rng_seed, same):
+        ctx, _ = context(seed=seed, rng_seed=rng_seed)
+        [child] = MakeFloor().apply(shape, args(split=5, same_layout=same), ctx)
+        return sorted(round(r.area, 6) for r in child.plan.rooms)
+
+    first, second = storey(floor=1), storey(floor=2, base=6.0)
+    assert layout(first, 0, 1, False) != layout(second, 0, 2, False)
+    assert layout(first, 0, 1, True) == layout(second, 0, 2, True)
+    assert layout(first, 0, 1, True) != layout(first, 1, 1, True)  # still follows the seed
+    other_rule = storey(floor=2, base=6.0, symbol="GroundFloor")
+    assert layout(first, 0, 1, True) != layout(other_rule, 0, 1, True)
+
+
+def test_unreachable_split_is_reported():
+    ctx, reports = context()
+    [child] = MakeFloor().apply(storey(box(0, 0, 6, 5), floor=2), args(split=6), ctx)
+    n = len(child.plan.rooms)
+    assert n < 7
+    [d] = reports
+    assert (d.level, d.stage, d.floor) == ("warning", "make_floor", 2)
+    assert d.message.startswith(f"made {n} rooms instead of 7: ")
+    assert "narrower than 2.40 m" in d.message
+
+
+def test_l_shaped_storey_and_collinear_footprint_vertices():
+    footprint = Polygon([(0, 0), (7, 0), (14, 0), (14, 6), (8, 6), (8, 10), (0, 10)])
+    ctx, _ = context()
+    [child] = MakeFloor().apply(storey(footprint), args(split=5), ctx)
+    validate_plan(child.plan)
+    assert (7.0, 0.0) not in [v.point for v in child.plan.dcel.vertices[:6]]
+    assert child.plan.footprint.equals(footprint)
+
+
+@pytest.mark.parametrize("shape, kwargs, message", [
+    (storey(height=2.5), {"windows": (1, 1.2, 1.5)}, "windows do not fit"),
+    (storey(height=2.2), {"windows": (0, 1.2, 1.2)}, "doorHeight 2.1 does not fit"),
+    (storey(), {"wall": 0.0}, "wallWidth must be positive"),
+    (storey(), {"windows": (1, 0.0, 1.2)}, "windowWidth must be positive"),
+    (storey(), {"wall": 1.5}, "more than twice wallWidth"),
+    (storey(), {"cut_range": (0.6, 0.4)}, "cut_range"),
+    (storey(), {"min_room_area": -1.0}, "min_room_area"),
+    (storey(box(0, 0, 10, 10).difference(box(4, 4, 6, 6))), {}, "without holes"),
+])
+def test_user_mistakes_raise_derivation_errors(shape, kwargs, message):
+    ctx, _ = context()
+    a = args(**{k: v for k, v in kwargs.items() if k in ("wall", "windows")})
+    a |= {k: v for k, v in kwargs.items() if k not in ("wall", "windows")}
+    with pytest.raises(DerivationError, match=message):
+        MakeFloor().apply(shape, a, ctx)
+
+
+def test_faces_are_refused():
+    face = Face(((0, 0, 0), (1, 0, 0), (1, 0, 1)), "top")
+    shape = Shape("F", ("F",), storey().scope, face)
+    with pytest.raises(DerivationError, match="storey"):
+        MakeFloor().apply(shape, args(), context()[0])
+
+
+def test_house_demo_builds_two_storeys():
+    grammar = parse_file(DEMO)
+    for seed in range(6):
+        result = derive(grammar, seed=seed)
+        plans = sorted((s.plan for s in result.terminals), key=lambda p: p.index)
+        assert [(p.index, p.elevation) for p in plans] == [(0, 0.0), (1, 3.0)]
+        assert 5 <= len(plans[0].rooms) <= 6 and 4 <= len(plans[1].rooms) <= 5
+        assert result.diagnostics == []
+        for p in plans:
+            validate_plan(p)
