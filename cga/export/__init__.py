@@ -21,6 +21,7 @@ from .rosmap import export_rosmap
 from .scene_json import export_scene_json
 from .sdf import export_sdf
 from .urdf import export_urdf
+from .view import export_view
 
 __all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS"]
 
@@ -35,6 +36,7 @@ EXPORTERS: dict[str, Exporter] = {
     "urdf": export_urdf,
     "sdf": export_sdf,
     "map": export_rosmap,
+    "view": export_view,
 }
 """Format name → writer."""
 
