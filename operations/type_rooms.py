@@ -111,12 +111,12 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     windows: tuple[Window, ...] = typed.windows
     doors: list[Door] = []
     if front_room is not None:
-        wall, interval, replaces = front_door_site(sites.outer[front_room], width)
-        centre = door_centre(interval, width, rng, door_position)
+        wall, centre, replaces = front_door_site(sites.outer[front_room], width, rng,
+                                                 door_position)
         if replaces:
             walls[wall.id], windows, removed = clear_windows(
                 walls[wall.id], windows, centre - width / 2, centre + width / 2)
-            notes.append(Diagnostic("warning", _STAGE, (
+            notes.append(Diagnostic("info", _STAGE, (
                 f"the front door replaces {len(removed)} window{'s' if len(removed) != 1 else ''} "
                 f"on wall {wall.id}: no stretch between windows of room {front_room} takes a "
                 f"{width:.2f} m door"), floor=plan.index, room=front_room))

@@ -90,8 +90,9 @@ def door_centre(interval: Interval, width: float, rng: np.random.Generator,
     return float(rng.uniform(lo, hi))
 
 
-def front_door_site(candidates: Sequence[tuple[Wall, Interval]],
-                    width: float) -> tuple[Wall, Interval, bool]:
+def front_door_site(candidates: Sequence[tuple[Wall, Interval]], width: float,
+                    rng: np.random.Generator,
+                    position: Literal["center", "random"]) -> tuple[Wall, float, bool]:
     """Where the front door goes among a room's outer walls.
 
     Parameters
@@ -101,13 +102,16 @@ def front_door_site(candidates: Sequence[tuple[Wall, Interval]],
         whose span takes the door).
     width:
         The door width.
+    rng, position:
+        As for :func:`door_centre`.
 
     Returns
     -------
-    (wall, interval, replaces_windows)
-        The longest stretch free of windows that takes the door; when there is none,
-        the first candidate's whole span, and True: the door then takes the place of
-        the windows in its way (:func:`clear_windows`).
+    (wall, centre, replaces_windows)
+        In the longest stretch free of windows that takes the door. When there is none,
+        the door takes a window's place (third item True; see :func:`clear_windows`):
+        centred on the window whose replacement removes the fewest windows, preferring
+        the longer wall and the window nearer the middle of its wall.
     """
     best: tuple[Wall, Interval] | None = None
     for wall, span in candidates:
@@ -115,9 +119,23 @@ def front_door_site(candidates: Sequence[tuple[Wall, Interval]],
             if hi - lo >= width and (best is None or hi - lo > best[1][1] - best[1][0]):
                 best = (wall, (lo, hi))
     if best is not None:
-        return best[0], best[1], False
-    wall, span = candidates[0]
-    return wall, span, True
+        return best[0], door_centre(best[1], width, rng, position), False
+    options = []
+    for rank, (wall, (lo, hi)) in enumerate(candidates):
+        middle = (lo + hi) / 2
+        for opening in wall.openings:
+            centre = min(max(opening.center, lo + width / 2), hi - width / 2)
+            removed = sum(_overlaps(o, centre - width / 2, centre + width / 2)
+                          for o in wall.openings)
+            options.append((removed, rank, abs(centre - middle), wall, centre))
+    _, _, _, wall, centre = min(options, key=lambda option: option[:3])
+    return wall, centre, True
+
+
+def _overlaps(opening: Opening, lo: float, hi: float) -> bool:
+    """Whether ``opening`` comes within :data:`DOOR_MARGIN` of ``[lo, hi]``."""
+    half = opening.width / 2
+    return opening.center - half < hi + DOOR_MARGIN and opening.center + half > lo - DOOR_MARGIN
 
 
 def clear_windows(wall: Wall, windows: Sequence[Window], lo: float,
@@ -130,13 +148,9 @@ def clear_windows(wall: Wall, windows: Sequence[Window], lo: float,
         The wall without those window openings, and the floor's window records split
         into those kept and those removed.
     """
-    def blocks(centre: float, half_width: float) -> bool:
-        return centre - half_width < hi + DOOR_MARGIN and centre + half_width > lo - DOOR_MARGIN
-
-    openings = tuple(o for o in wall.openings
-                     if o.kind != "window" or not blocks(o.center, o.width / 2))
-    removed = tuple(w for w in windows if w.wall == wall.id
-                    and blocks(math.dist(wall.start, w.position), w.width / 2))
+    openings = tuple(o for o in wall.openings if o.kind != "window" or not _overlaps(o, lo, hi))
+    removed = tuple(w for w in windows if w.wall == wall.id and _overlaps(
+        Opening("window", math.dist(wall.start, w.position), w.width, w.height), lo, hi))
     kept = tuple(w for w in windows if w not in removed)
     return replace(wall, openings=openings), kept, removed
 

@@ -1,8 +1,10 @@
 """type_rooms over many random floors and tables: every promise checked independently.
 
 Floors are random guillotine tilings of a random rectangle (1–12 rooms, sides ≥ 3 m)
-built with ``plan_from_rectangles``; tables are the shipped ones plus random tables whose
-sizes and neighbour lists are drawn per seed, so failures happen too. For every floor,
+built with ``plan_from_rectangles`` (600 seeds), and make_floor's BSP partitions of
+rectangle, L, U and T footprints (300 seeds); tables are the shipped ones plus random
+tables whose sizes and neighbour lists are drawn per seed, so failures happen too. For
+every floor,
 either the typed plan passes ``validate_typed_plan`` (tests/support/typing_checks.py:
 shapely + networkx, independent of the typing code), or a NoSolutionError says which
 rule failed and why.
@@ -14,6 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from cga.errors import NoSolutionError
+from cga.model import FloorSettings
+from cga.operations.floorplan.assemble import plan_from_dcel
+from cga.operations.floorplan.bsp import partition
 from cga.operations.floorplan.rectangles import plan_from_rectangles
 from cga.operations.roomtyping.rules import load_rule_table
 from cga.operations.type_rooms import type_plan
@@ -93,3 +98,36 @@ def test_typing_promises_hold_on_random_floors(tmp_path):
             failures.append((seed, str(error)))
     assert not failures, failures[:5]
     assert typed_floors >= SEEDS * 0.8 and refused > 0  # both outcomes exercised
+
+
+FOOTPRINTS = {
+    "rectangle": [(0, 0), (14, 0), (14, 10), (0, 10)],
+    "L": [(0, 0), (16, 0), (16, 7), (8, 7), (8, 13), (0, 13)],
+    "U": [(0, 0), (18, 0), (18, 12), (12, 12), (12, 6), (6, 6), (6, 12), (0, 12)],
+    "T": [(0, 6), (6, 6), (6, 0), (12, 0), (12, 6), (18, 6), (18, 12), (0, 12)],
+}
+
+
+def test_typing_promises_hold_on_make_floor_partitions():
+    """The same promises on floors cut by make_floor's BSP (any rectilinear footprint)."""
+    shipped = [resolve_resource(f"{n}_types.csv", "rules") for n in ("house", "office")]
+    tables = [load_rule_table(path) for path in shipped]
+    failures, typed_floors = [], 0
+    for seed in range(300):
+        rng = np.random.default_rng(10_000 + seed)
+        name = list(FOOTPRINTS)[seed % len(FOOTPRINTS)]
+        settings = FloorSettings(windows_per_wall=1 + seed % 2)
+        result = partition(FOOTPRINTS[name], int(rng.integers(2, 10)), rng)
+        plan = plan_from_dcel(result.dcel, settings=settings, index=int(seed % 3 == 2),
+                              elevation=0.0, height=3.0)
+        try:
+            typed = type_plan(plan, tables[seed % 2], rng)
+        except NoSolutionError as error:
+            failures.append((seed, name, f"refused: {error}"))
+            continue
+        typed_floors += 1
+        try:
+            validate_typed_plan(typed, shipped[seed % 2], front_door=plan.index == 0)
+        except AssertionError as error:
+            failures.append((seed, name, str(error)))
+    assert not failures, failures[:5]

@@ -104,7 +104,22 @@ def test_front_door_replaces_a_window_when_no_gap_takes_it():
     assert [o.kind for o in wall.openings] == ["door"]
     assert len(typed.windows) == len(plan.windows) - 1
     assert all(w.wall != wall.id for w in typed.windows)
-    assert any("replaces 1 window" in d.message for d in typed.diagnostics)
+    note = next(d for d in typed.diagnostics if "replaces 1 window" in d.message)
+    assert note.level == "info"
+
+
+def test_front_door_takes_one_windows_place_not_two():
+    # 6 m walls with two windows each leave no gap for the door; between the windows it
+    # would remove both, centred on one it removes one
+    plan = plan_from_rectangles([(0, 0, 6, 3.5), (6, 0, 12, 3.5)],
+                                settings=FloorSettings(windows_per_wall=2))
+    table = rules("Livingroom;5;1;Kitchen;1;1;0", "Kitchen;5;0;Livingroom;0;1;0")
+    for seed in range(5):
+        typed = type_plan(plan, table, np.random.default_rng(seed))
+        wall = typed.wall(typed.front_door().wall)
+        assert wall.length == 6
+        assert sorted(o.kind for o in wall.openings) == ["door", "window"]
+        assert len(typed.windows) == len(plan.windows) - 1
 
 
 def test_fewest_extra_doors_make_every_room_reachable(tmp_path):
