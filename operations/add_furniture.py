@@ -12,7 +12,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError
+from cga.model import FloorPlan
+from cga.resources import resolve_resource
 from cga.shape import Shape
 
 from .base import Child, Operation, OperationContext, Param
@@ -20,7 +24,7 @@ from .furniture.library import ModelLibrary, default_library
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
 from .furniture.solver import furnish_plan
 
-__all__ = ["AddFurniture", "LIBRARY_CACHE_KEY"]
+__all__ = ["AddFurniture", "LIBRARY_CACHE_KEY", "furnish_floor"]
 
 LIBRARY_CACHE_KEY = "model_library"
 """Key of the build's :class:`~cga.operations.furniture.library.ModelLibrary` in
@@ -77,18 +81,59 @@ class AddFurniture(Operation):
                 "add_furniture needs typed rooms, but no room of this floor has a type",
                 ctx.span, hint="apply type_rooms(...) before add_furniture")
         path = Path(ctx.resolve(args["rules"], "rules"))
-        rules = _rules(ctx, path)
-        library = _library(ctx)
-        models = _models(rules, library)
-        furniture, diagnostics = furnish_plan(
-            plan, rules.scaled(ctx.units), models, ctx.rng,
-            steering_iterations=args["steeringIterations"], attempts=args["clearanceTries"])
-        for item in furniture:
-            if item.is_detail:
-                library.get(item.model)
-        furnished = plan.with_changes(furniture=furniture,
-                                      diagnostics=plan.diagnostics + diagnostics)
+        furnished = _furnish(plan, _rules(ctx, path), _library(ctx), ctx.rng, ctx.units,
+                             args["steeringIterations"], args["clearanceTries"])
         return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=furnished)]
+
+
+def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: float = 1.0,
+                  steering_iterations: int = 10, clearance_tries: int = 20,
+                  library: ModelLibrary | None = None) -> FloorPlan:
+    """Furnish a typed floor as ``add_furniture`` does in a grammar (for rule authors).
+
+    Parameters
+    ----------
+    plan:
+        A typed floor, e.g. from :func:`cga.authoring.type_floor`.
+    rules:
+        The furniture table: a path, or the name of a shipped table such as
+        ``"furniture_house.csv"``.
+    seed:
+        Seed of the random stream; the same seed gives the same furniture.
+    units:
+        Metres per unit of the table's distances.
+    steering_iterations, clearance_tries:
+        As the operation's ``steeringIterations`` and ``clearanceTries``.
+    library:
+        The models; default: the shipped ones.
+
+    Returns
+    -------
+    FloorPlan
+        A copy with ``furniture`` and the messages about left-out items appended to
+        ``diagnostics``.
+
+    Raises
+    ------
+    ResourceNotFoundError, RuleTableError
+        The table or one of its models does not exist, or the table is malformed.
+    """
+    table = load_furniture_rules(resolve_resource(rules, "rules"))
+    return _furnish(plan, table, library or default_library(), np.random.default_rng(seed),
+                    units, steering_iterations, clearance_tries)
+
+
+def _furnish(plan: FloorPlan, rules: FurnitureRules, library: ModelLibrary,
+             rng: np.random.Generator, units: float, steering_iterations: int,
+             clearance_tries: int) -> FloorPlan:
+    models = _models(rules, library)
+    furniture, diagnostics = furnish_plan(plan, rules.scaled(units), models, rng,
+                                          steering_iterations=steering_iterations,
+                                          attempts=clearance_tries)
+    for item in furniture:
+        if item.is_detail:
+            library.get(item.model)
+    return plan.with_changes(furniture=furniture, diagnostics=plan.diagnostics + diagnostics)
 
 
 def _rules(ctx: OperationContext, path: Path) -> FurnitureRules:

@@ -1,0 +1,114 @@
+"""The solver on whole rooms and floors: the thesis table, small rooms, details."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from furniture_checks import furniture_violations
+
+from cga.operations.furniture.rules import load_furniture_rules, parse_furniture_rules
+from cga.operations.furniture.solver import furnish_plan
+
+
+def models_for(rules, library):
+    return {r.name: (library.get(r.name).name, library.get(r.name).size)
+            for r in rules if not r.is_detail}
+
+
+@pytest.fixture(scope="module")
+def thesis(rules_dir, library):
+    rules = load_furniture_rules(rules_dir / "furniture_thesis.csv")
+    return rules, models_for(rules, library)
+
+
+def test_thesis_table_places_all_twelve_items_in_a_5_by_4_room(thesis, room_plan, rules_dir):
+    rules, models = thesis
+    complete = 0
+    for seed in range(100):
+        plan = room_plan(5.0, 4.0, doors=((seed % 4, 0.25 + 0.5 * (seed % 3) / 2, "start"),),
+                         windows=(((seed + 2) % 4, 0.5),))
+        furniture, diagnostics = furnish_plan(plan, rules, models, np.random.default_rng(seed))
+        furnished = plan.with_changes(furniture=furniture)
+        assert furniture_violations(furnished, rules_dir / "furniture_thesis.csv") == []
+        names = {item.name for item in furniture}
+        expected = {r.name for r in rules if not r.is_detail} | {"door0", "window0"}
+        if names == expected and not diagnostics:
+            complete += 1
+    assert complete >= 95
+
+
+def test_a_small_room_leaves_items_out_with_reasons(thesis, room_plan, rules_dir):
+    rules, models = thesis
+    plan = room_plan(3.0, 2.6)
+    furniture, diagnostics = furnish_plan(plan, rules, models, np.random.default_rng(1))
+    assert diagnostics, "a 3 × 2.6 m room cannot hold the thesis' living room"
+    placed = {item.name for item in furniture}
+    for diagnostic in diagnostics:
+        assert diagnostic.level == "warning" and diagnostic.stage == "add_furniture"
+        assert diagnostic.room == 0 and diagnostic.floor == 0
+        name, _, reason = diagnostic.message.partition(" left out of room0_Livingroom: ")
+        assert name in {r.name for r in rules} and name not in placed and reason
+    assert furniture_violations(plan.with_changes(furniture=furniture),
+                                rules_dir / "furniture_thesis.csv") == []
+
+
+def test_orphaned_children_say_their_parent_was_not_placed(room_plan, library):
+    rules = parse_furniture_rules(
+        "Room;Name;isAlongWall;hasPair;PairWith;canBeAround\n"
+        "Livingroom;tableBig;true;true;;false\n"
+        "Livingroom;chair;false;true;tableBig;true\n")
+    plan = room_plan(1.8, 1.8)
+    _, diagnostics = furnish_plan(plan, rules, models_for(rules, library),
+                                  np.random.default_rng(0))
+    messages = [d.message for d in diagnostics]
+    assert messages[0].startswith("tableBig left out of room0_Livingroom: no wall long enough")
+    assert messages[1] == "chair left out of room0_Livingroom: parent tableBig not placed"
+
+
+def test_same_seed_same_layout(thesis, room_plan):
+    rules, models = thesis
+    plan = room_plan(5.0, 4.0)
+    first = furnish_plan(plan, rules, models, np.random.default_rng(42))
+    assert furnish_plan(plan, rules, models, np.random.default_rng(42)) == first
+    other = furnish_plan(plan, rules, models, np.random.default_rng(43))
+    assert other[0] != first[0]
+
+
+def test_details_for_every_door_and_window_and_only_typed_rooms(room_plan, library):
+    rules = parse_furniture_rules(
+        "Room;Name;isAlongWall;isDetail\n"
+        "Livingroom;doorOak;false;true\n"
+        "Livingroom;shelf;true;false\n")
+    models = models_for(rules, library)
+    plan = room_plan(5.0, 4.0, doors=((0, 0.3, "start"), (1, 0.5, "end")),
+                     windows=((2, 0.3), (2, 0.7), (3, 0.5)))
+    furniture, _ = furnish_plan(plan, rules, models, np.random.default_rng(0))
+    details = {item.name: item for item in furniture if item.is_detail}
+    assert set(details) == {"door0", "door1", "window0", "window1", "window2"}
+    door, window = details["door0"], details["window2"]
+    assert door.model == "doorOak" and window.model == "window"
+    assert door.size == pytest.approx((0.9, 2.1, 0.2)) and door.elevation == 0
+    assert door.position == pytest.approx((plan.doors[0].position[0], 0.1))  # mid-wall
+    assert door.front == pytest.approx((0, 1))  # towards the room it swings into
+    assert window.size == pytest.approx((1.2, 1.2, 0.2)) and window.elevation == 0.9
+    assert window.position == pytest.approx((0.1, 2.0)) and window.front == pytest.approx((1, 0))
+    assert [i.name for i in furniture if not i.is_detail] == ["shelf"]
+    untyped = plan.with_changes(rooms=(replace(plan.rooms[0], type=None),))
+    furniture, _ = furnish_plan(untyped, rules, models, np.random.default_rng(0))
+    assert all(item.is_detail for item in furniture)
+    other_type = plan.with_changes(rooms=(replace(plan.rooms[0], type="Hall"),))
+    furniture, diagnostics = furnish_plan(other_type, rules, models, np.random.default_rng(0))
+    assert all(item.is_detail for item in furniture) and not diagnostics
+    assert {i.model for i in furniture if i.name.startswith("door")} == {"door"}
+
+
+def test_more_attempts_never_place_fewer_items(thesis, room_plan):
+    rules, models = thesis
+    plan = room_plan(4.2, 3.4)
+    for seed in range(10):
+        one, _ = furnish_plan(plan, rules, models, np.random.default_rng(seed), attempts=1)
+        many, _ = furnish_plan(plan, rules, models, np.random.default_rng(seed), attempts=20)
+        assert len(many) >= len(one)

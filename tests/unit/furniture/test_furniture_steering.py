@@ -1,0 +1,72 @@
+"""Random start positions and separation steering."""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+from shapely.geometry import Polygon, box
+
+from cga.operations.furniture.steering import random_start, separation_steering
+
+L_ROOM = Polygon([(0, 0), (6, 0), (6, 2), (2, 2), (2, 5), (0, 5)])
+
+
+def overlap(points: np.ndarray, radii: np.ndarray) -> float:
+    total = 0.0
+    for i in range(len(points)):
+        for j in range(i + 1, len(points)):
+            total += max(0.0, radii[i] + radii[j] - np.linalg.norm(points[i] - points[j]))
+    return total
+
+
+def test_random_start_is_inside_and_reproducible():
+    half = np.full((40, 2), 0.3)
+    first = random_start(L_ROOM, half, np.random.default_rng(3))
+    again = random_start(L_ROOM, half, np.random.default_rng(3))
+    assert np.array_equal(first, again)
+    assert shapely.contains_xy(L_ROOM, first[:, 0], first[:, 1]).all()
+
+
+def test_an_item_larger_than_the_room_starts_in_the_middle():
+    points = random_start(box(0, 0, 2, 2), np.array([[3.0, 0.5]]), np.random.default_rng(0))
+    assert points[0, 0] == 1.0
+
+
+def test_separation_spreads_items_apart_and_keeps_them_inside():
+    room = box(0, 0, 6, 5)
+    rng = np.random.default_rng(11)
+    start = 3 + rng.normal(0, 0.05, size=(6, 2))
+    radii = np.full(6, 0.6)
+    half = np.full((6, 2), 0.4)
+    movable = np.ones(6, dtype=bool)
+    result = separation_steering(start, radii, movable, room, half, 30)
+    assert overlap(result, radii) < 0.2 * overlap(start, radii)
+    assert (result >= half).all() and (result[:, 0] <= 6 - 0.4).all() and (result[:, 1] <= 5 - 0.4).all()
+    assert np.allclose(start, 3 + np.random.default_rng(11).normal(0, 0.05, size=(6, 2)))
+
+
+def test_fixed_items_do_not_move_and_zero_iterations_change_nothing():
+    room = box(0, 0, 6, 5)
+    start = np.array([[3.0, 2.5], [3.1, 2.5], [3.0, 2.6]])
+    movable = np.array([False, True, True])
+    result = separation_steering(start, np.full(3, 0.5), movable, room, np.full((3, 2), 0.3), 10)
+    assert np.array_equal(result[0], start[0]) and not np.allclose(result[1:], start[1:])
+    assert np.array_equal(separation_steering(start, np.full(3, 0.5), movable, room,
+                                              np.full((3, 2), 0.3), 0), start)
+
+
+def test_coincident_items_separate_deterministically():
+    room = box(0, 0, 6, 5)
+    start = np.full((3, 2), 2.5)
+    args = (np.full(3, 0.5), np.ones(3, dtype=bool), room, np.full((3, 2), 0.3), 20)
+    first = separation_steering(start, *args)
+    assert np.array_equal(first, separation_steering(start, *args))
+    assert overlap(first, np.full(3, 0.5)) < overlap(start, np.full(3, 0.5))
+
+
+def test_steps_never_leave_a_non_rectangular_room():
+    rng = np.random.default_rng(5)
+    half = np.full((8, 2), 0.2)
+    start = random_start(L_ROOM, half, rng)
+    result = separation_steering(start, np.full(8, 1.0), np.ones(8, dtype=bool), L_ROOM, half, 40)
+    assert shapely.contains_xy(L_ROOM, result[:, 0], result[:, 1]).all()
