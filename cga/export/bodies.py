@@ -2,19 +2,24 @@
 
 A build becomes one static **building** body (every static node that is not furniture:
 walls, slabs, ceilings, masses, merged into one concave triangle mesh) plus one body per
-**furniture item** (every ``furniture`` node). An item's link frame sits at the centre
-of its bounding box and is turned by the item's yaw (``rotation`` extra, quarter turns
-about world +y = ROS +z), so:
+**furniture item** (every ``furniture`` node). An item's link frame sits at its centre
+of mass (its convex parts at uniform density) and is turned by the item's yaw
+(``rotation`` extra, quarter turns about world +y = ROS +z), so:
 
 * ``pybullet.loadURDF(item_urdf, basePosition=pose.position,
   baseOrientation=pose.quaternion_xyzw)`` puts the item where it stands, and
-  ``getBasePositionAndOrientation`` reports that same pose (the centre of mass is the
-  link origin, so pybullet's inertial-frame convention does not shift it);
-* the inertia is that of the item's box (exact extents, since turns are quarter turns).
+  ``getBasePositionAndOrientation`` reports that same pose (the link origin is the
+  centre of mass, so pybullet's inertial-frame convention does not shift it);
+* a top-heavy or overhanging item (a pedestal washbasin) balances as it does in the
+  physics check, because its centre of mass is where its material is;
+* the inertia is that of the item's box, a solid of the item's extents in its own frame
+  (exact extents, since turns are quarter turns), about the centre of mass.
 
-Solid items are dynamic with the mass of their ``mass`` extra; detail items and
-non-colliding items (rugs) are fixed (mass 0). Collision geometry of an item is its
-convex parts, one collision element each.
+Solid items are dynamic with the mass of their ``mass`` extra and collide through their
+convex parts (shrunk by :data:`CONTACT_SHRINK`), one collision element each. Static furniture (door leaves, window frames,
+rugs) is fixed and visual only: the physics and navigability checks ignore it, a rug
+lies under what stands on it, and a door leaf must not close the gap the navigability
+check drove through.
 
 :func:`write_body_meshes` writes the OBJ files both URDF and SDF refer to, under
 ``meshes/`` next to the world file.
@@ -28,6 +33,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -39,11 +45,18 @@ from .frames import WORLD_TO_ROS, RosPose, pose_to_ros, world_to_ros
 from .obj import MeshGroup, mtl_text, node_groups, node_material, obj_text
 from .palette import RGB, node_color
 
-__all__ = ["RobotBody", "BodyFiles", "MESH_DIR", "robot_bodies", "write_body_meshes",
-           "box_inertia", "numbers_text"]
+__all__ = ["RobotBody", "BodyFiles", "MESH_DIR", "CONTACT_SHRINK", "robot_bodies",
+           "write_body_meshes", "box_inertia", "centre_of_mass", "numbers_text"]
 
 MESH_DIR = "meshes"
 """Folder (relative to the output folder) holding the robot exporters' OBJ files."""
+
+CONTACT_SHRINK = 0.002
+"""m: how far each face of an item's convex collision parts is moved in. pybullet gives
+every shape loaded from URDF/SDF a 1 mm collision margin, so an item standing exactly on
+the floor would start 2 mm deep in it and be pushed about; shrunk by 2 mm it touches
+exactly (the physics check builds its bodies the same way). Other simulators see items
+2 mm smaller than drawn, well below any placement tolerance."""
 
 
 @dataclass(frozen=True)
@@ -114,11 +127,37 @@ def _unique(names: list[str]) -> list[str]:
     return out
 
 
+def _shrink_for_margin(vertices: np.ndarray) -> np.ndarray:
+    """A convex part scaled about its box centre so each face moves in by
+    :data:`CONTACT_SHRINK` (parts thinner than four times that keep half their size)."""
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    centre, extent = (lo + hi) / 2, hi - lo
+    scale = np.maximum(extent - 2 * CONTACT_SHRINK, extent / 2) / np.maximum(extent, 1e-12)
+    return (vertices - centre) * scale + centre
+
+
+def centre_of_mass(parts: Sequence[Any]) -> np.ndarray:
+    """World centre of mass of solid convex parts of uniform density (the volume-weighted
+    mean of their centroids); the bounding-box centre if they enclose no volume."""
+    solids = [p if p.is_volume else p.convex_hull for p in parts]
+    volumes = np.array([max(float(s.volume), 0.0) for s in solids])
+    if volumes.sum() <= 0.0:
+        return np.asarray(trimesh_bounds(parts), dtype=float).mean(axis=0)
+    return np.average([s.center_mass for s in solids], axis=0, weights=volumes)
+
+
+def trimesh_bounds(meshes: Sequence[Any]) -> np.ndarray:
+    """(2, 3) bounds of several meshes together."""
+    bounds = np.array([m.bounds for m in meshes], dtype=float)
+    return np.array([bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)])
+
+
 def _item_body(node: SceneNode, name: str) -> RobotBody:
     turns = int(node.extras.get("rotation", 0)) % 4
-    pose = pose_to_ros(np.asarray(node.mesh.bounds, dtype=float).mean(axis=0), 90.0 * turns)
-    # link frame: the ROS axes turned by the yaw, origin at the bounding-box centre;
-    # a ROS point p has link coordinates yawᵀ (p − origin), i.e. (p − origin) @ yaw as rows
+    parts = node.parts or (node.mesh,)
+    pose = pose_to_ros(centre_of_mass(parts), 90.0 * turns)
+    # link frame: the ROS axes turned by the yaw, origin at the centre of mass; a ROS
+    # point p has link coordinates yawᵀ (p − origin), i.e. (p − origin) @ yaw as rows
     c, s = math.cos(pose.yaw), math.sin(pose.yaw)
     yaw = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     origin = np.asarray(pose.position)
@@ -128,22 +167,26 @@ def _item_body(node: SceneNode, name: str) -> RobotBody:
 
     label = _identifier(str(node.extras.get("model", "item")))
     material, color = node_material(node)
-    collisions = tuple(MeshGroup(f"{label}_part{k}", local(p), np.asarray(p.faces), material)
-                       for k, p in enumerate(node.parts or (node.mesh,)))
-    stacked = np.vstack([g.vertices for g in collisions])
-    static = bool(node.static)
-    mass = 0.0 if static else float(node.extras.get("mass", 0.0))
-    if not static and not mass > 0.0:
+    visual = (MeshGroup(label, local(node.mesh), np.asarray(node.mesh.faces), material),)
+    if node.static:  # details and rugs: seen, not touched (the checks ignore them too)
+        return RobotBody(name=name, node=node.path, label=label, pose=pose, visual=visual,
+                         materials={material: color}, collisions=(), mass=0.0,
+                         inertia=(0.0, 0.0, 0.0), static=True, concave=False, color=color)
+    mass = float(node.extras.get("mass", 0.0))
+    if not mass > 0.0:
         raise ExportError(f"furniture node '{node.path}' has no positive 'mass' extra "
                           f"(got {node.extras.get('mass')!r}); robot exports need the "
                           f"mass of every movable item")
+    solids = [local(p) for p in parts]
+    collisions = tuple(MeshGroup(f"{label}_part{k}", _shrink_for_margin(v),
+                                 np.asarray(p.faces), material)
+                       for k, (p, v) in enumerate(zip(parts, solids)))
+    stacked = np.vstack(solids)
     return RobotBody(
-        name=name, node=node.path, label=label, pose=pose,
-        visual=(MeshGroup(label, local(node.mesh), np.asarray(node.mesh.faces), material),),
+        name=name, node=node.path, label=label, pose=pose, visual=visual,
         materials={material: color}, collisions=collisions, mass=mass,
-        inertia=(0.0, 0.0, 0.0) if static else box_inertia(
-            mass, stacked.max(axis=0) - stacked.min(axis=0)),
-        static=static, concave=False, color=color)
+        inertia=box_inertia(mass, stacked.max(axis=0) - stacked.min(axis=0)),
+        static=False, concave=False, color=color)
 
 
 def robot_bodies(scene: Scene, nodes: Sequence[SceneNode]) -> tuple[RobotBody, list[RobotBody]]:

@@ -89,7 +89,7 @@ def test_pybullet_loads_the_urdfs(built):
                                           b["base_orientation_xyzw"], useFixedBase=b["fixed"])
                for b in index["bodies"]}
         assert client.getNumBodies() == count
-        for item in items:
+        for item in (i for i in items if not i["static"]):  # static items: visual only
             assert np.allclose(client.getAABB(ids[item["path"]]), _ros_box(item["bbox"]),
                                atol=0.01), item["path"]
     finally:

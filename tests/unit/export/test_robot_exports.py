@@ -11,11 +11,13 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pybullet
 import pytest
+import trimesh
 from pybullet_utils.bullet_client import BulletClient
 
 from cga.errors import ExportError
 from cga.export.sdf import export_sdf
 from cga.export.urdf import export_urdf
+from cga.scene import SceneNode
 
 
 def _ros_box(mesh):
@@ -57,7 +59,14 @@ def _load_urdfs(client, out):
 
 def _check_in_place(client, bodies, nodes):
     for node in _furniture(nodes):
-        lo, hi = (np.array(v) for v in client.getAABB(bodies[node.path]))
+        body = bodies[node.path]
+        if node.static:  # visual only: no collision box; the fixture's boxes have their
+            # centre of mass at the middle of their bounding box
+            position = client.getBasePositionAndOrientation(body)[0]
+            assert np.allclose(position, _ros_box(node.mesh).mean(axis=0)), node.path
+            assert client.getCollisionShapeData(body, -1) == ()
+            continue
+        lo, hi = (np.array(v) for v in client.getAABB(body))
         assert np.allclose([lo, hi], _ros_box(node.mesh), atol=0.01), node.path
     lo, hi = (np.array(v) for v in client.getAABB(bodies[None]))
     structure = np.array([_ros_box(n.mesh) for n in nodes if n.kind != "furniture"])
@@ -94,10 +103,12 @@ def test_sdf_world_loads_with_one_body_per_item_plus_building(client, outputs, s
     root = ET.parse(outputs / "house.world.sdf").getroot()
     assert root.get("version") == "1.6"
     for model in root.iter("model"):
-        for element in ("link/visual", "link/collision"):
-            assert model.find(element) is not None
+        assert model.find("link/visual") is not None
         if model.findtext("static") == "0":
             assert float(model.findtext("link/inertial/mass")) > 0
+            assert model.find("link/collision") is not None
+    rug = next(m for m in root.iter("model") if m.get("name").endswith("_rug"))
+    assert rug.findtext("static") == "1" and rug.find("link/collision") is None
 
 
 @pytest.mark.physics
@@ -153,3 +164,36 @@ def test_movable_item_without_mass_is_an_export_error(small_scene, tmp_path):
                 for n in nodes]
     with pytest.raises(ExportError, match="sofa.*mass"):
         export_urdf(scene, stripped, tmp_path, "house")
+
+
+def _pedestal_basin(x, z, floor_y):
+    """A 20 × 20 cm pedestal 0.7 m high under a 60 × 50 × 20 cm basin that overhangs to
+    the front (−z): its centre of mass is not the middle of its bounding box."""
+    pedestal = trimesh.creation.box((0.2, 0.7, 0.2))
+    pedestal.apply_translation((x, floor_y + 0.35, z))
+    basin = trimesh.creation.box((0.6, 0.2, 0.5))
+    basin.apply_translation((x, floor_y + 0.8, z - 0.1))
+    mesh = trimesh.util.concatenate([pedestal, basin])
+    node = SceneNode("floor0/room2_Bathroom/furniture/washbasin", "furniture", mesh,
+                     {"model": "washbasin", "rotation": 0, "mass": 20.0}, False,
+                     (pedestal, basin))
+    volumes = np.array([0.2 * 0.7 * 0.2, 0.6 * 0.2 * 0.5])
+    centres = np.array([[x, floor_y + 0.35, z], [x, floor_y + 0.8, z - 0.1]])
+    return node, (volumes[:, None] * centres).sum(axis=0) / volumes.sum()
+
+
+@pytest.mark.physics
+def test_base_pose_is_the_centre_of_mass_and_overhangs_balance(client, small_scene, tmp_path):
+    scene, nodes = small_scene
+    washbasin, com = _pedestal_basin(7.0, 4.0, scene.floors[0].floor_y)
+    export_urdf(scene, [*nodes, washbasin], tmp_path, "house")
+    index = json.loads((tmp_path / "house.urdf.json").read_text())
+    entry = next(b for b in index["bodies"] if b["node"] == washbasin.path)
+    assert entry["base_position"] == pytest.approx([com[0], -com[2], com[1]], abs=1e-6)
+    bodies = _load_urdfs(client, tmp_path)
+    start = np.array(client.getBasePositionAndOrientation(bodies[washbasin.path])[0])
+    assert start == pytest.approx(entry["base_position"], abs=1e-6)
+    for _ in range(240):
+        client.stepSimulation()
+    end = np.array(client.getBasePositionAndOrientation(bodies[washbasin.path])[0])
+    assert np.abs(end - start).max() < 0.005
