@@ -153,10 +153,11 @@ def _key(p: tuple[float, float]) -> tuple[float, float]:
 
 def _continuation(wall: Wall, point: tuple[float, float],
                   ends: dict[tuple[float, float], list[Wall]]) -> Wall | None:
-    """The wall that goes on in a straight line from ``wall`` at ``point``, if any."""
+    """The wall that goes on in a straight line from ``wall`` at ``point`` with the same
+    band (both inner or both outer), if any."""
     d = wall.direction
     for other in ends[_key(point)]:
-        if other is not wall:
+        if other is not wall and other.outer == wall.outer:
             e = other.direction
             if abs(d[0] * e[1] - d[1] * e[0]) < 1e-9:
                 return other

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 from shapely.geometry import Polygon, box
@@ -13,12 +11,9 @@ from cga.evaluator import derive
 from cga.operations import OperationRegistry
 from cga.operations.base import OperationContext
 from cga.operations.make_floor import MakeFloor
-from cga.parser import parse_file
+from cga.parser import parse
 from cga.shape import Face, Mass, Shape
 from dcel_checks import validate_plan
-
-DEMO = Path(__file__).resolve().parents[3] / "demos" / "house.grammar"
-
 
 def storey(footprint=box(0, 0, 14, 10), base=3.0, height=3.0, floor=1, symbol="UpperFloor", path=None):
     mass = Mass(footprint, base, height)
@@ -132,13 +127,25 @@ def test_faces_are_refused():
         MakeFloor().apply(shape, args(), context()[0])
 
 
-def test_house_demo_builds_two_storeys():
-    grammar = parse_file(DEMO)
+TWO_STOREYS = """
+Lot: rectangle(14, 10)
+Variables:
+  wallWidth = 0.2;
+Rules:
+Lot --> extrude(6) Body
+Body --> repeated_split("Y", 3){GroundFloor, UpperFloor}
+GroundFloor --> make_floor(5, wallWidth, 2>1.2>1.2, 0.9, 2.1) Floor
+UpperFloor --> make_floor(4, wallWidth, 2>1.2>1.2, 0.9, 2.1, min_room_area = 8, same_layout = true) Floor
+"""
+
+
+def test_storeys_through_the_evaluator():
+    grammar = parse(TWO_STOREYS, "two_storeys.grammar")
     for seed in range(6):
         result = derive(grammar, seed=seed)
         plans = sorted((s.plan for s in result.terminals), key=lambda p: p.index)
-        assert [(p.index, p.elevation) for p in plans] == [(0, 0.0), (1, 3.0)]
-        assert 5 <= len(plans[0].rooms) <= 6 and 4 <= len(plans[1].rooms) <= 5
+        assert [(p.index, p.elevation, p.height) for p in plans] == [(0, 0.0, 3.0), (1, 3.0, 3.0)]
+        assert [len(p.rooms) for p in plans] == [6, 5]
         assert result.diagnostics == []
         for p in plans:
             validate_plan(p)
