@@ -3,13 +3,15 @@
 Phases, as in the thesis:
 
 1. the first rule is drawn by ``Prob`` (a uniform number ``u``; rules with ``Prob ≥ u``
-   qualify, one of them is taken at random) and put on a random room big enough for it;
+   qualify, one of them is taken at random) and put on a room big enough for it, chosen
+   at random with a preference for rooms whose size rank matches the rule's;
 2. the remaining mandatory rules are placed on free rooms that are big enough and adjoin
    a room of a listed type; when one cannot be placed, the correction backtracker
    revisits earlier placements (:mod:`.backtrack`);
 3. optional rules, and further rooms of types whose ``appearance`` allows more than
-   one, fill the rooms that remain, round by round in table order, each on a random free
-   room that is big enough and adjoins a listed type;
+   one, fill the rooms that remain, round by round in table order, each on a free room
+   that is big enough and adjoins a listed type (preferring rooms whose size rank
+   matches the rule's, with random jitter);
 4. rooms still free get the default type ``Commonroom``.
 
 A floor with fewer rooms than mandatory rules cannot hold them all; then as many rules
@@ -31,7 +33,8 @@ import numpy as np
 
 from cga.errors import NoSolutionError
 
-from .backtrack import Placement, RoomSet, RuleSpec, Unplaceable, place_rules
+from .backtrack import (Placement, RoomSet, RuleSpec, Unplaceable, place_rules,
+                        size_preferences)
 from .explain import explain_failure, static_reasons
 from .rules import DEFAULT_TYPE, RuleTable, TypeRule
 
@@ -205,23 +208,26 @@ def _room_id(rooms: RoomSet, i: int) -> int:
 
 def _fill_optional(rooms: RoomSet, table: RuleTable, types: list[str | None],
                    rng: np.random.Generator, *, area_scale: float, skipped: set[str]) -> None:
-    """Phase 3: optional rules and further rooms of repeatable types, round by round."""
+    """Phase 3: optional rules and further rooms of repeatable types, round by round in
+    table order; each takes its most preferred free room that is big enough and adjoins
+    a listed type (:func:`~.backtrack.size_preferences` over the whole table)."""
     counts: dict[str, int] = {}
     for t in types:
         if t is not None:
             counts[t] = counts.get(t, 0) + 1
     pool = [r for r in table.rules if r.type not in skipped]
+    preferences = size_preferences(rooms.areas, [r.size for r in pool], rng)
     while any(t is None for t in types):
         progress = False
-        for rule in pool:
+        for rule, preference in zip(pool, preferences):
             if counts.get(rule.type, 0) >= rule.appearance:
                 continue
-            eligible = [i for i, t in enumerate(types)
-                        if t is None and rooms.areas[i] >= rule.size * area_scale
-                        and any(types[j] in rule.neighbours for j in rooms.adjacency[i])]
-            if not eligible:
+            room = next((i for i in preference
+                         if types[i] is None and rooms.areas[i] >= rule.size * area_scale
+                         and any(types[j] in rule.neighbours for j in rooms.adjacency[i])),
+                        None)
+            if room is None:
                 continue
-            room = eligible[int(rng.integers(len(eligible)))]
             types[room] = rule.type
             counts[rule.type] = counts.get(rule.type, 0) + 1
             progress = True

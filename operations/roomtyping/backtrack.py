@@ -7,7 +7,8 @@ re-placing the rules they displaced. Its correction is a single sweep and can mi
 typing that exists. Here both steps are one depth-first search:
 
 * the greedy pass is the search's first descent: every rule takes its first candidate
-  room, rooms that already satisfy the rule's neighbour requirement first;
+  room, rooms that already satisfy the rule's neighbour requirement first, then by the
+  rule's preference (:func:`size_preferences`: big rules to big rooms, with jitter);
 * the correction is chronological backtracking: when a rule has no candidate left, the
   latest placement is undone and its rule moves to its next candidate room; rules placed
   after it are re-placed, exactly the thesis' "re-satisfy displaced rules", but
@@ -36,7 +37,11 @@ from typing import Literal
 
 import numpy as np
 
-__all__ = ["RoomSet", "RuleSpec", "Placement", "Failure", "Unplaceable", "place_rules"]
+__all__ = ["RoomSet", "RuleSpec", "Placement", "Failure", "Unplaceable", "place_rules",
+           "size_preferences", "PREFERENCE_JITTER"]
+
+PREFERENCE_JITTER = 0.35
+"""Random spread added to size-rank distances (ranks run from 0 to 1), for variety."""
 
 
 @dataclass(frozen=True)
@@ -116,6 +121,33 @@ class _SearchStats:
     first_failure: Failure | None = None
 
 
+def size_preferences(areas: Sequence[float], sizes: Sequence[float],
+                     rng: np.random.Generator) -> list[list[int]]:
+    """For each size, the rooms from most to least preferred, matching ranks.
+
+    Rooms are ranked by area and sizes by value, both from 0 (largest) to 1 (smallest);
+    a size prefers the rooms whose rank is closest to its own, plus a uniform jitter of
+    up to :data:`PREFERENCE_JITTER`. So the rule with the largest ``Size`` (a living
+    room) tends to the largest rooms and the smallest (a bathroom) to the smallest,
+    while seeds still vary the layout. Preferences only order the search; they never
+    exclude a room.
+    """
+    room_rank, size_rank = _ranks(areas), _ranks(sizes)
+    noise = rng.uniform(0.0, PREFERENCE_JITTER, size=(len(sizes), len(areas)))
+    return [sorted(range(len(areas)), key=lambda i: abs(room_rank[i] - size_rank[k]) + noise[k][i])
+            for k in range(len(sizes))]
+
+
+def _ranks(values: Sequence[float]) -> list[float]:
+    """Rank of each value, 0 for the largest to 1 for the smallest (ties by position)."""
+    order = sorted(range(len(values)), key=lambda i: -values[i])
+    scale = max(len(values) - 1, 1)
+    ranks = [0.0] * len(values)
+    for position, i in enumerate(order):
+        ranks[i] = position / scale
+    return ranks
+
+
 def _bits(mask: int) -> Iterator[int]:
     """The indices of the set bits of ``mask``, lowest first."""
     while mask:
@@ -181,11 +213,11 @@ class _Masks:
 class _Search:
     """One depth-first search with a fixed first rule and a fixed exempt rule."""
 
-    def __init__(self, masks: _Masks, rank: Sequence[int], exempt: int | None,
-                 stats: _SearchStats):
+    def __init__(self, masks: _Masks, preference: Sequence[Sequence[int]],
+                 exempt: int | None, stats: _SearchStats):
         self.m = masks.m
         self.adj, self.fits, self.nbr = masks.adj, masks.fits, masks.nbr
-        self.rank = rank
+        self.position = [{room: p for p, room in enumerate(order)} for order in preference]
         self.exempt = exempt
         self.stats = stats
         self.room_of = [-1] * masks.m
@@ -233,11 +265,12 @@ class _Search:
                 return k
         return None
 
-    def ordered(self, now: int, later: int) -> list[int]:
-        """Candidate rooms to try: those satisfying the rule now first, each group in
-        the call's random room order."""
-        return (sorted(_bits(now), key=self.rank.__getitem__)
-                + sorted(_bits(later), key=self.rank.__getitem__))
+    def ordered(self, k: int, now: int, later: int) -> list[int]:
+        """Candidate rooms of rule k to try: those satisfying the rule now first, each
+        group in the rule's order of preference."""
+        position = self.position[k]
+        return sorted(_bits(now), key=position.__getitem__) + sorted(_bits(later),
+                                                                      key=position.__getitem__)
 
     # -- search --------------------------------------------------------------------
     def _record(self, failure: Failure) -> None:
@@ -264,7 +297,7 @@ class _Search:
         if not now | later:
             self._record(Failure(tuple(self.room_of), "no-room", (first,)))
             return False
-        return self._branch(first, self.ordered(now, later))
+        return self._branch(first, self.ordered(first, now, later))
 
     def _branch(self, k: int, rooms: list[int]) -> bool:
         for room in rooms:
@@ -303,7 +336,7 @@ class _Search:
             return False
         assert best is not None
         _, k, now, later = best
-        return self._branch(k, self.ordered(now, later))
+        return self._branch(k, self.ordered(k, now, later))
 
 
 def _exemptions(masks: _Masks, first: int) -> list[int]:
@@ -335,7 +368,8 @@ def place_rules(rooms: RoomSet, rules: Sequence[RuleSpec], *, first: int,
     first:
         Index of the rule placed first (the thesis draws it by ``Prob``).
     rng:
-        Orders the candidate rooms (one permutation per call), so seeds vary the layout.
+        Jitters each rule's order of preference among rooms (:func:`size_preferences`),
+        so seeds vary the layout.
 
     Returns
     -------
@@ -356,14 +390,14 @@ def place_rules(rooms: RoomSet, rules: Sequence[RuleSpec], *, first: int,
     """
     if not rules:
         return Placement(rooms=(), exempt=None, first_failure=None, backtracks=0)
-    rank = [int(r) for r in rng.permutation(len(rooms))]
+    preference = size_preferences(rooms.areas, [r.min_area for r in rules], rng)
     masks = _Masks(rooms, rules)
     stats = _SearchStats()
     failures: list[Failure] = []
     exempt: int | None = None
     options: list[int] | None = None  # computed once the search without exemption fails
     while True:
-        search = _Search(masks, rank, exempt, stats)
+        search = _Search(masks, preference, exempt, stats)
         if search.run(first if exempt is None else exempt):
             return Placement(rooms=tuple(search.room_of), exempt=exempt,
                              first_failure=stats.first_failure, backtracks=stats.backtracks)
