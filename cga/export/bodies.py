@@ -42,7 +42,7 @@ from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
 from .frames import WORLD_TO_ROS, RosPose, pose_to_ros, world_to_ros
-from .obj import MeshGroup, mtl_text, node_groups, node_material, obj_text
+from .obj import MeshGroup, mtl_text, node_groups, node_material, obj_text, vertex_colors
 from .palette import RGB, node_color
 
 __all__ = ["RobotBody", "BodyFiles", "MESH_DIR", "CONTACT_SHRINK", "robot_bodies",
@@ -167,7 +167,8 @@ def _item_body(node: SceneNode, name: str) -> RobotBody:
 
     label = _identifier(str(node.extras.get("model", "item")))
     material, color = node_material(node)
-    visual = (MeshGroup(label, local(node.mesh), np.asarray(node.mesh.faces), material),)
+    visual = (MeshGroup(label, local(node.mesh), np.asarray(node.mesh.faces), material,
+                        vertex_colors(node.mesh)),)
     if node.static:  # details and rugs: seen, not touched (the checks ignore them too)
         return RobotBody(name=name, node=node.path, label=label, pose=pose, visual=visual,
                          materials={material: color}, collisions=(), mass=0.0,

@@ -2,8 +2,8 @@
 
 The OBJ is in the world frame (metres, y up), like the glTF. Each node becomes a group
 named by its semantic path (``g floor0/room1_Livingroom/furniture/sofa``) using a
-material per node kind (walls, slabs, ...) or per furniture model when the node carries
-a ``color`` extra. The writer is hand-made on purpose: trimesh's OBJ export merges a
+material per node kind (walls, slabs, ...) or per furniture model when the item has
+colours of its own; meshes with vertex colours keep them (``v x y z r g b``). The writer is hand-made on purpose: trimesh's OBJ export merges a
 scene into one mesh and loses the node names this format is asked for.
 
 :func:`obj_text` and :func:`mtl_text` are reused by the robot exporters for their mesh
@@ -16,6 +16,7 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -24,18 +25,20 @@ from cga.scene import Scene, SceneNode
 
 from .palette import RGB, node_color
 
-__all__ = ["MeshGroup", "obj_text", "mtl_text", "node_material", "node_groups", "export_obj"]
+__all__ = ["MeshGroup", "obj_text", "mtl_text", "vertex_colors", "node_material", "node_groups",
+           "export_obj"]
 
 
 @dataclass(frozen=True)
 class MeshGroup:
-    """One OBJ group: a name, a triangle mesh (``vertices`` (n, 3), ``faces`` (m, 3)) and
-    the name of its material."""
+    """One OBJ group: a name, a triangle mesh (``vertices`` (n, 3), ``faces`` (m, 3)),
+    the name of its material and optional per-vertex colours (n, 3) in 0..1."""
 
     name: str
     vertices: np.ndarray
     faces: np.ndarray
     material: str
+    colors: np.ndarray | None = None
 
 
 def _safe(name: str) -> str:
@@ -69,7 +72,10 @@ def obj_text(groups: Sequence[MeshGroup], *, mtl_file: str | None, header: str) 
         lines.append(f"g {_safe(group.name)}\n")
         if mtl_file is not None:
             lines.append(f"usemtl {_safe(group.material)}\n")
-        lines.append(_format_rows("v", np.round(vertices, 6) + 0.0, ".6f"))
+        rows = np.round(vertices, 6) + 0.0
+        if group.colors is not None:  # the common "v x y z r g b" extension
+            rows = np.hstack([rows, np.round(np.asarray(group.colors, dtype=float), 4)])
+        lines.append(_format_rows("v", rows, ".6f"))
         lines.append(_format_rows("f", faces + offset, "d"))
         offset += len(vertices)
     return "".join(lines)
@@ -85,14 +91,27 @@ def mtl_text(materials: Mapping[str, RGB]) -> str:
     return "".join(blocks)
 
 
+def vertex_colors(mesh: Any) -> np.ndarray | None:
+    """A mesh's per-vertex colours as (n, 3) floats in 0..1, or None if it has none."""
+    visual = getattr(mesh, "visual", None)
+    if visual is None or visual.kind != "vertex":
+        return None
+    return np.asarray(visual.vertex_colors, dtype=float)[:, :3] / 255.0
+
+
 def node_material(node: SceneNode) -> tuple[str, RGB]:
-    """A node's material: per furniture model when the node has a ``color`` extra, else
-    per node kind; returns ``(name, colour)``."""
-    if "color" in node.extras and node.kind == "furniture":
-        name = f"furniture_{node.extras.get('model', 'item')}"
-    else:
-        name = node.kind
-    return _safe(name), node_color(node.kind, node.extras)
+    """A node's material, returned as ``(name, colour)``: a furniture item with its own
+    colour (a ``color`` extra, else the mean of its vertex colours) gets one per model,
+    everything else one per node kind (:func:`cga.export.palette.node_color`)."""
+    colors = vertex_colors(node.mesh)
+    if node.kind == "furniture" and ("color" in node.extras or colors is not None):
+        if "color" in node.extras:
+            color = node_color(node.kind, node.extras)
+        else:
+            r, g, b = (float(c) for c in colors.mean(axis=0))
+            color = (r, g, b)
+        return _safe(f"furniture_{node.extras.get('model', 'item')}"), color
+    return _safe(node.kind), node_color(node.kind, node.extras)
 
 
 def node_groups(nodes: Sequence[SceneNode], transform: np.ndarray | None = None
@@ -121,7 +140,7 @@ def node_groups(nodes: Sequence[SceneNode], transform: np.ndarray | None = None
             vertices = vertices @ np.asarray(transform).T
         material, color = node_material(node)
         materials[material] = color
-        groups.append(MeshGroup(node.path, vertices, faces, material))
+        groups.append(MeshGroup(node.path, vertices, faces, material, vertex_colors(node.mesh)))
     return groups, materials
 
 
