@@ -20,6 +20,7 @@ room is reachable from it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any, Literal
 
@@ -33,8 +34,8 @@ from cga.shape import Shape
 from .base import Child, Operation, OperationContext, Param
 from .roomtyping.assign import Typing, assign_types
 from .roomtyping.backtrack import RoomSet
-from .roomtyping.doors import (clear_windows, door_centre, door_opening, door_spans,
-                               front_door_site, make_door)
+from .roomtyping.doors import (Interval, clear_windows, door_centre, door_opening,
+                               door_spans, front_door_site, make_door)
 from .roomtyping.room_graph import (DoorSites, door_sites, reachability_pairs, room_graph,
                                     rule_pairs)
 from .roomtyping.rules import RuleTable, load_rule_table
@@ -111,17 +112,8 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     windows: tuple[Window, ...] = typed.windows
     doors: list[Door] = []
     if front_room is not None:
-        wall, centre, replaces = front_door_site(sites.outer[front_room], width, rng,
-                                                 door_position)
-        if replaces:
-            walls[wall.id], windows, removed = clear_windows(
-                walls[wall.id], windows, centre - width / 2, centre + width / 2)
-            notes.append(Diagnostic("info", _STAGE, (
-                f"the front door replaces {len(removed)} window{'s' if len(removed) != 1 else ''} "
-                f"on wall {wall.id}: no stretch between windows of room {front_room} takes a "
-                f"{width:.2f} m door"), floor=plan.index, room=front_room))
-        doors.append(_add_door(len(doors), walls, wall.id, centre, (front_room, OUTSIDE),
-                               typed, "front"))
+        windows = _add_front_door(doors, walls, windows, typed, sites.outer[front_room],
+                                  front_room, rng, door_position, notes)
     for reason, chosen in (("rule", pairs), ("reachability", extra)):
         for pair in chosen:
             wall, interval = sites.inner[pair][0]
@@ -133,6 +125,24 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
                                 windows=windows, doors=tuple(doors),
                                 diagnostics=plan.diagnostics + tuple(notes))
     return result.with_changes(room_graph=room_graph(result, doors, entry=entry))
+
+
+def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Window, ...],
+                    plan: FloorPlan, candidates: Sequence[tuple[Wall, Interval]], room: int,
+                    rng: np.random.Generator, door_position: Literal["center", "random"],
+                    notes: list[Diagnostic]) -> tuple[Window, ...]:
+    """Put the front door in ``room``'s outer wall; returns the windows left."""
+    width = plan.settings.door_width
+    wall, centre, replaces = front_door_site(candidates, width, rng, door_position)
+    if replaces:
+        walls[wall.id], windows, removed = clear_windows(
+            walls[wall.id], windows, centre - width / 2, centre + width / 2)
+        notes.append(Diagnostic("info", _STAGE, (
+            f"the front door replaces {len(removed)} window{'s' if len(removed) != 1 else ''} "
+            f"on wall {wall.id}: no stretch between windows of room {room} takes a "
+            f"{width:.2f} m door"), floor=plan.index, room=room))
+    doors.append(_add_door(len(doors), walls, wall.id, centre, (room, OUTSIDE), plan, "front"))
+    return windows
 
 
 def _add_door(door_id: int, walls: dict[int, Wall], wall_id: int, centre: float,

@@ -30,6 +30,7 @@ from cga.model import OUTSIDE, Door, FloorPlan, Opening, Room, Wall, Window
 
 __all__ = [
     "DOOR_MARGIN",
+    "Interval",
     "door_spans",
     "free_intervals",
     "door_centre",
@@ -44,6 +45,7 @@ DOOR_MARGIN = 0.1
 """Clear wall (m) kept on both sides of a door opening."""
 
 Interval = tuple[float, float]
+"""A stretch of a wall: distances (m) of its ends from the wall's start."""
 
 
 def door_spans(plan: FloorPlan) -> dict[int, Interval]:

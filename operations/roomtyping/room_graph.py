@@ -137,7 +137,8 @@ def reachability_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: Door
         return (-degree[hub], -area[hub], -sites.longest(pair), pair)
 
     added = []
-    for a, b in sorted((p for p in sites.inner if p not in set(pairs)), key=preference):
+    joined = set(pairs)
+    for a, b in sorted((p for p in sites.inner if p not in joined), key=preference):
         if components[a] != components[b]:
             components.union(a, b)
             added.append((a, b))
