@@ -10,6 +10,7 @@ import trimesh
 
 from cga.export.obj import export_obj
 from cga.export.palette import KIND_COLORS
+from cga.scene import SceneNode
 
 
 @pytest.fixture(scope="module")
@@ -43,3 +44,17 @@ def test_materials_carry_kind_colours(obj_files):
     blocks = dict(re.findall(r"newmtl (\S+)\n(?:.*\n)*?Kd ([\d. ]+)\n", mtl.read_text()))
     assert set(blocks) == {"wall", "slab", "furniture"}
     assert [float(v) for v in blocks["wall"].split()] == pytest.approx(KIND_COLORS["wall"], abs=1e-4)
+
+
+def test_coloured_furniture_keeps_its_colours(small_scene, tmp_path):
+    scene, nodes = small_scene
+    chair = trimesh.creation.box((0.5, 0.9, 0.5))
+    chair.visual.vertex_colors = np.tile([204, 102, 51, 255], (len(chair.vertices), 1))
+    node = SceneNode("floor0/room1_Kitchen/furniture/chair", "furniture", chair,
+                     {"model": "chair", "mass": 5.0}, False, (chair,))
+    obj, mtl = export_obj(scene, [*nodes, node], tmp_path, "house")
+    text = obj.read_text()
+    block = text.split("g floor0/room1_Kitchen/furniture/chair\n")[1]
+    assert block.startswith("usemtl furniture_chair\n")
+    assert block.splitlines()[1] == "v -0.250000 -0.450000 -0.250000 0.800000 0.400000 0.200000"
+    assert "newmtl furniture_chair\nKa 0 0 0\nKd 0.8000 0.4000 0.2000" in mtl.read_text()
