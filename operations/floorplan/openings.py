@@ -52,7 +52,8 @@ def window_centres(length: float, count: int, width: float, thickness: float) ->
     return [round(thickness + gap * (k + 1) + width * (k + 0.5), 6) for k in range(n)]
 
 
-def place_windows(walls: tuple[Wall, ...], settings: FloorSettings) -> tuple[tuple[Wall, ...], tuple[Window, ...]]:
+def place_windows(walls: tuple[Wall, ...],
+                  settings: FloorSettings) -> tuple[tuple[Wall, ...], tuple[Window, ...]]:
     """Cut ``settings.windows_per_wall`` windows into every outer wall.
 
     Parameters

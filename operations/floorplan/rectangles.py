@@ -65,7 +65,8 @@ def plan_from_rectangles(rectangles: Sequence[Rectangle], *, settings: FloorSett
     if not rects:
         raise UsageError("plan_from_rectangles needs at least one rectangle")
     _check_rectangles(rects, settings.wall_thickness)
-    corners = sorted({(x, z) for x0, z0, x1, z1 in rects for x, z in ((x0, z0), (x1, z0), (x1, z1), (x0, z1))})
+    corners = sorted({corner for x0, z0, x1, z1 in rects
+                      for corner in ((x0, z0), (x1, z0), (x1, z1), (x0, z1))})
     rings = [_subdivided_ring(r, corners) for r in rects]
     try:
         dcel = DCEL.from_polygons(rings)
@@ -96,13 +97,11 @@ def _subdivided_ring(rect: Rectangle, corners: list[tuple[float, float]]) -> lis
     x0, z0, x1, z1 = rect
     sides = [((x0, z0), (x1, z0)), ((x1, z0), (x1, z1)), ((x1, z1), (x0, z1)), ((x0, z1), (x0, z0))]
     ring: list[tuple[float, float]] = []
-    for (ax, az), (bx, bz) in sides:
-        ring.append((ax, az))
-        if az == bz:  # horizontal side: corners strictly between, ordered from a to b
-            on = [p for p in corners if abs(p[1] - az) <= EPS and min(ax, bx) + EPS < p[0] < max(ax, bx) - EPS]
-            on.sort(key=lambda p: p[0], reverse=bx < ax)
-        else:
-            on = [p for p in corners if abs(p[0] - ax) <= EPS and min(az, bz) + EPS < p[1] < max(az, bz) - EPS]
-            on.sort(key=lambda p: p[1], reverse=bz < az)
+    for a, b in sides:
+        ring.append(a)
+        k = 0 if a[1] == b[1] else 1  # the side runs along x (horizontal) or along z
+        lo, hi = sorted((a[k], b[k]))
+        on = [p for p in corners if abs(p[1 - k] - a[1 - k]) <= EPS and lo + EPS < p[k] < hi - EPS]
+        on.sort(key=lambda p: p[k], reverse=b[k] < a[k])
         ring.extend(on)
     return ring

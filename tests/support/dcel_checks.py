@@ -142,7 +142,8 @@ def validate_plan(plan) -> None:
         if w.outer:
             assert not plan.footprint.contains(probe_right), f"outer wall {w.id} has floor on its right"
         else:
-            assert rooms[right].polygon.contains(probe_right), f"wall {w.id}: room {right} is not on its right"
+            assert rooms[right].polygon.contains(probe_right), \
+                f"wall {w.id}: room {right} is not on its right"
         shared = LineString([w.start, w.end])
         assert rooms[left].polygon.boundary.covers(shared), f"wall {w.id} is not on room {left}'s boundary"
         windows = sorted((o for o in w.openings if o.kind == "window"), key=lambda o: o.center)

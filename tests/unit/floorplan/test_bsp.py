@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shapely.geometry import Polygon, box
+from shapely.geometry import Polygon
 
 from cga.operations.floorplan.bsp import partition
 from dcel_checks import narrowest_room_violation, validate_dcel

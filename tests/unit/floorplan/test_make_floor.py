@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import shapely
 from shapely.geometry import Polygon, box
 
 from cga.errors import DerivationError
 from cga.evaluator import derive
 from cga.operations import OperationRegistry
 from cga.operations.base import OperationContext
+from cga.operations.floorplan.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.parser import parse
 from cga.shape import Face, Mass, Shape
@@ -149,3 +151,21 @@ def test_storeys_through_the_evaluator():
         assert result.diagnostics == []
         for p in plans:
             validate_plan(p)
+
+
+@pytest.mark.parametrize("footprint", [
+    Polygon([(0, 0), (14, 0), (11, 10), (3, 10)]),                     # trapezoid
+    Polygon([(3, 0), (11, 0), (14, 5), (11, 10), (3, 10), (0, 5)]),    # hexagon
+])
+def test_convex_footprints_with_slanted_walls(footprint):
+    for seed in range(3):
+        ctx, _ = context(rng_seed=seed)
+        [child] = MakeFloor().apply(storey(footprint), args(split=5), ctx)
+        plan = child.plan
+        validate_plan(plan)
+        walls = [n for n in floor_nodes(plan) if n.kind == "wall"]
+        assert len(walls) == len(plan.walls)
+        assert all(n.mesh.is_watertight and n.mesh.volume > 0 for n in walls)
+        region = footprint.difference(shapely.union_all([r.interior for r in plan.rooms]))
+        openings = sum(o.width * o.height * 0.2 for w in plan.walls for o in w.openings)
+        assert sum(n.mesh.volume for n in walls) == pytest.approx(region.area * 2.8 - openings, rel=1e-6)

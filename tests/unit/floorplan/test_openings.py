@@ -18,8 +18,9 @@ from cga.operations.floorplan.openings import MIN_GAP, place_windows, window_cen
 def test_window_count_drops_on_short_walls(length, count, expected):
     centres = window_centres(length, count, 1.2, 0.2)
     assert len(centres) == expected
-    edges = [(c - 0.6, c + 0.6) for c in centres]
-    gaps = [edges[0][0] - 0.2] + [b[0] - a[1] for a, b in zip(edges, edges[1:])] + [length - 0.2 - edges[-1][1]] if edges else []
+    # clear gaps: wall start (past the 0.2 m wall meeting it), between windows, wall end
+    bounds = [0.2] + [x for c in centres for x in (c - 0.6, c + 0.6)] + [length - 0.2]
+    gaps = [b - a for a, b in zip(bounds[0::2], bounds[1::2])] if centres else []
     assert all(g >= MIN_GAP - 1e-9 for g in gaps)
     assert max(gaps, default=0) - min(gaps, default=0) < 1e-5  # evenly spaced (µm rounding)
 

@@ -20,7 +20,8 @@ RECTS = [(0, 0, 6, 10), (6, 0, 14, 5), (6, 5, 14, 10)]
 
 
 def three_rooms(**changes):
-    return plan_from_rectangles(RECTS, settings=SETTINGS, index=1, elevation=3.0, height=3.0).with_changes(**changes)
+    plan = plan_from_rectangles(RECTS, settings=SETTINGS, index=1, elevation=3.0, height=3.0)
+    return plan.with_changes(**changes)
 
 
 def walls(nodes):
