@@ -20,7 +20,8 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -128,7 +129,7 @@ class FurnitureModel:
     path: Path
     convex_parts: bool = True
 
-    @property
+    @cached_property
     def volume(self) -> float:
         """Sum of the parts' volumes (m³); see :func:`part_volume`."""
         return sum(part_volume(p) for p in self.parts)
@@ -178,7 +179,7 @@ class ModelLibrary:
             path = self.find(name)
             model = self._by_path.get(path)
             if model is None:
-                model = load_model(path)
+                model = _load_shared(path)
                 self._by_path[path] = model
             self._by_name[key] = model
         return model
@@ -216,6 +217,29 @@ class ModelLibrary:
                         index.setdefault(normalize_name(path.stem), path)
             self._index[folder] = index
         return index
+
+
+_PARSED: dict[Path, tuple[int, int, FurnitureModel]] = {}
+"""Models parsed in this process: resolved path → (mtime_ns, size, model)."""
+
+
+def _load_shared(path: Path) -> FurnitureModel:
+    """:func:`load_model`, parsing each version of a file once per process.
+
+    Loading (OBJ parsing, the convexity test of every part) costs far more than a small
+    build's layout, and every build of a batch uses the same files. A library still hands
+    out its own :class:`FurnitureModel` record per file; the read-only geometry behind it
+    is shared. A file changed on disk (other modification time or size) is parsed again.
+    """
+    try:
+        stat = path.stat()
+        key = path.resolve()
+    except OSError:
+        return load_model(path)
+    cached = _PARSED.get(key)
+    if cached is None or cached[:2] != (stat.st_mtime_ns, stat.st_size):
+        cached = _PARSED[key] = (stat.st_mtime_ns, stat.st_size, load_model(path))
+    return replace(cached[2])
 
 
 def load_model(path: Path) -> FurnitureModel:
@@ -348,7 +372,8 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
     parts = tuple(p.copy().apply_transform(matrix) for p in model.parts)
     mesh = model.mesh.copy().apply_transform(matrix)
     room = plan.room(item.room)
-    volume = sum(part_volume(p) for p in parts)
+    # an affine map scales every volume (and convex hull volume) by |det|
+    volume = model.volume * abs(float(np.linalg.det(matrix[:3, :3])))
     return SceneNode(
         path=f"floor{plan.index}/{room.label}/furniture/{item.name}",
         kind="furniture",
