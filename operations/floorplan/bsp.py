@@ -112,8 +112,8 @@ def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator,
     grid
         Cut positions are multiples of this (m).
     min_offset
-        Least distance (m) between a cut and a parallel corner or wall end of the leaf,
-        unless it lines up with a wall end exactly.
+        Least distance (m) between a cut and the leaf's corners and wall ends along the
+        cut axis, unless the cut lines up with one exactly.
 
     Returns
     -------
