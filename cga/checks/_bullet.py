@@ -68,16 +68,19 @@ def direct_client() -> Iterator[tuple[ModuleType, int]]:
 
 
 def obj_text(meshes: Sequence[trimesh.Trimesh], *, offset: Sequence[float] = (0.0, 0.0, 0.0)) -> str:
-    """OBJ text with one object (``o partN``) per mesh, vertices moved by ``-offset``."""
-    lines: list[str] = []
+    """OBJ text with one object (``o partN``) per mesh, vertices moved by ``-offset``
+    (written to the nanometre)."""
+    chunks: list[str] = []
     base = 1
     shift = np.asarray(offset, dtype=float)
     for number, mesh in enumerate(meshes):
-        lines.append(f"o part{number}")
-        lines.extend("v {:.9g} {:.9g} {:.9g}".format(*v) for v in np.asarray(mesh.vertices) - shift)
-        lines.extend("f {} {} {}".format(*f) for f in np.asarray(mesh.faces) + base)
-        base += len(mesh.vertices)
-    return "\n".join(lines) + "\n"
+        vertices = np.asarray(mesh.vertices, dtype=float) - shift
+        faces = np.asarray(mesh.faces, dtype=np.int64) + base
+        chunks.append(f"o part{number}\n")
+        chunks.append(("v %.9f %.9f %.9f\n" * len(vertices)) % tuple(vertices.ravel()))
+        chunks.append(("f %d %d %d\n" * len(faces)) % tuple(faces.ravel().tolist()))
+        base += len(vertices)
+    return "".join(chunks)
 
 
 def obj_objects(text: str) -> list[np.ndarray]:

@@ -295,8 +295,8 @@ class _FloorCheck:
         start_kind, start_point, start_room, note = self._start()
         cell = self._start_cell(start_point)
         self.labels, _ = ndimage.label(self.drivable)
-        reached = (self.labels == self.labels[cell] if cell is not None
-                   else np.zeros(self.grid.shape, bool))
+        self.reached = reached = (self.labels == self.labels[cell] if cell is not None
+                                  else np.zeros(self.grid.shape, bool))
         reachable = {rid: bool((m & reached).any()) for rid, m in self.masks.items()}
         inside_start = start_room if start_kind == "largest_room" else None
         narrowest = self._narrowest(cell, reached, inside_start) if cell is not None else {}
@@ -492,11 +492,19 @@ class _FloorCheck:
         return f"room {room.id} ({room.type})" if room.type else f"room {room.id}"
 
     def _items_near_door(self, door: Door, room_id: int) -> list[str]:
-        """Furniture of room ``room_id`` bordering the drivable patch through the door."""
+        """Furniture of room ``room_id`` that separates the drivable patch behind the door
+        from the part of the room the robot reaches: items bordering both (or, when no
+        item borders both, every item bordering the patch)."""
         strip = self.grid.rasterise(self._doorway(door, 0.0)) & self.drivable
         patch = np.isin(self.labels, np.unique(self.labels[strip]))
-        grown = ndimage.binary_dilation(patch, iterations=math.ceil(self.radius / self.res) + 1)
-        return self._items_touching(grown, room_id)
+        reach = math.ceil(self.radius / self.res) + 1
+        near_patch = self._items_touching(ndimage.binary_dilation(patch, iterations=reach),
+                                          room_id)
+        rest = self.reached & self.masks[room_id]
+        near_rest = set(self._items_touching(ndimage.binary_dilation(rest, iterations=reach),
+                                             room_id))
+        between = [path for path in near_patch if path in near_rest]
+        return between or near_patch
 
     def _items_touching(self, mask: np.ndarray, room_id: int | None = None) -> list[str]:
         """Paths of the furniture obstacles (of room ``room_id``, when given) that occupy

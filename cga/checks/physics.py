@@ -19,7 +19,9 @@ Settling runs for ``settle_seconds`` of simulated time at ``timestep``, and stop
 once every item has been at rest (speed below 1 mm/s and spin below 0.01 rad/s) for
 0.2 s: items that rest that still move less than the thresholds over what is left of the
 settle time, so the early stop cannot hide a failure, and a furnished house settles in a
-fraction of the time.
+fraction of the time. An item balanced so finely that it starts to tip too slowly to
+notice in that time is caught statically: its centre of mass must lie over the hull of
+the points it stands on (its vertices within 5 mm of its lowest point).
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import shapely
 import trimesh
 
 from cga.scene import Scene, SceneNode
@@ -67,11 +70,18 @@ _REST_SPEED = 1e-3
 _REST_SPIN = 1e-2
 """rad/s."""
 
-_REST_SECONDS = 0.2
+_REST_SECONDS = 0.1
 """Simulated time every item must stay at rest before settling stops early."""
 
-_CHECK_EVERY = 0.05
+_CHECK_EVERY = 0.025
 """Simulated seconds between two rest checks."""
+
+_FOOT = 0.005
+"""m: an item stands on its vertices within this height of its lowest point."""
+
+_STABILITY_TOLERANCE = 0.01
+"""m: an item whose centre of mass lies further than this outside the hull of the points
+it stands on is about to tip."""
 
 _MARGIN = 0.001
 """m: Bullet's collision margin around every shape here (convex hulls of a compound,
@@ -104,7 +114,8 @@ class ItemPhysics:
     ``displacement`` and ``rotation_deg`` compare the pose after settling with the pose
     before. ``fell_through``: the item ended below the surface it stood over (or, with
     nothing under it, below its starting height). ``tipped``: its up axis ended more than
-    :data:`TIP_ANGLE_DEG` from vertical. ``problems`` says in words what failed.
+    :data:`TIP_ANGLE_DEG` from vertical. ``stable``: its centre of mass lies over the
+    hull of the points it stands on. ``problems`` says in words what failed.
     """
 
     path: str
@@ -118,6 +129,7 @@ class ItemPhysics:
     rotation_deg: float
     fell_through: bool
     tipped: bool
+    stable: bool = True
     problems: tuple[str, ...] = ()
 
     @property
@@ -138,6 +150,7 @@ class ItemPhysics:
             "rotation_deg": round(self.rotation_deg, 3),
             "fell_through": self.fell_through,
             "tipped": self.tipped,
+            "stable": self.stable,
             "passed": self.passed,
             "problems": list(self.problems),
         }
@@ -313,6 +326,7 @@ class _Body:
     start: np.ndarray
     bottom: float
     path: str
+    support_gap: float
 
 
 @dataclass
@@ -366,7 +380,7 @@ class _World:
         self.pb.changeDynamics(uid, -1, restitution=0.0, physicsClientId=self.client)
         self.paths[uid], self.kinds[uid] = node.path, "item"
         return _Body(uid=uid, mass=mass, start=centroid, bottom=float(node.mesh.bounds[0][1]),
-                     path=node.path)
+                     path=node.path, support_gap=_support_gap(parts, centroid))
 
     def support_heights(self, points: Sequence[np.ndarray]) -> list[float | None]:
         """For each point, the height of the first static surface straight below it."""
@@ -450,6 +464,15 @@ def _convex_parts(node: SceneNode, cache_dir: Path | None) -> list[trimesh.Trime
     return list(convex_decomposition(node.mesh, cache=cache_dir))
 
 
+def _support_gap(parts: Sequence[trimesh.Trimesh], centroid: np.ndarray) -> float:
+    """Plan distance (m) from the centre of mass to the hull of the points the item
+    stands on: its vertices within :data:`_FOOT` of its lowest point (0 when over it)."""
+    vertices = np.concatenate([np.asarray(p.vertices, dtype=float) for p in parts])
+    feet = vertices[vertices[:, 1] <= vertices[:, 1].min() + _FOOT][:, [0, 2]]
+    hull = shapely.MultiPoint(feet).convex_hull
+    return float(hull.distance(shapely.Point(centroid[0], centroid[2])))
+
+
 def _shrunk(part: trimesh.Trimesh) -> trimesh.Trimesh:
     """The part scaled about its box centre so each axis-aligned face moves in by
     :data:`_SHRINK` (parts thinner than 4 × that keep at least half their size)."""
@@ -480,6 +503,7 @@ def _item_result(node: SceneNode, body: _Body, world: _World, support: float | N
     surface = support if support is not None else body.bottom
     fell = bool(top[1] < surface - _SUPPORT_TOLERANCE)
     tipped = tilt > TIP_ANGLE_DEG
+    stable = body.support_gap <= _STABILITY_TOLERANCE
     problems = []
     if depth > penetration_tol:
         problems.append(f"overlaps {other} by {depth * 1000:.1f} mm "
@@ -489,6 +513,9 @@ def _item_result(node: SceneNode, body: _Body, world: _World, support: float | N
                         else "has no floor under it and fell")
     if tipped:
         problems.append(f"tipped over ({tilt:.0f}° from upright)")
+    elif not stable and not fell:
+        problems.append(f"will tip: its centre of mass is {body.support_gap * 100:.1f} cm "
+                        f"outside the points it stands on")
     if displacement > move_tol:
         problems.append(f"moved {displacement * 100:.1f} cm (limit {move_tol * 100:g} cm)")
     if rotation > rot_tol_deg:
@@ -506,6 +533,7 @@ def _item_result(node: SceneNode, body: _Body, world: _World, support: float | N
         rotation_deg=rotation,
         fell_through=fell,
         tipped=tipped,
+        stable=stable,
         problems=tuple(problems),
     )
 

@@ -155,3 +155,30 @@ def test_concave_user_model_is_decomposed(kit, room, tmp_path):
     report = check_physics(kit.scene_of(plan), nodes + [node], cache_dir=tmp_path)
     assert report.passed, report.summary()
     assert len(list(tmp_path.glob("*.obj"))) == 1
+
+
+def test_items_placed_side_by_side_stay_put(kit, room):
+    plan, nodes = room
+    # A kitchen run: three cabinets touching each other and the wall at x = 0.2.
+    cabinets = [kit.box_item(f"cabinet{k}", (0.6, 0.9, 0.6), (0.5, 1.0 + 0.6 * k))
+                for k in range(3)]
+    report = check_physics(kit.scene_of(plan), nodes + cabinets)
+    assert report.passed, report.summary()
+    assert report.max_penetration < 0.001 and report.max_displacement < 0.002
+
+
+def test_barely_unbalanced_item_is_caught(kit, room):
+    plan, nodes = room
+    # A small foot (x 1.9-2.1) carrying a post twice its weight centred at x = 2.18: the
+    # centre of mass (x = 2.12) is 2 cm past the foot. It may tip too slowly to move much
+    # while settling, but it stands on nothing under its centre of mass.
+    foot = kit.box_mesh((0.2, 0.05, 0.2), (2.0, 0.2 + 0.025, 2.0))
+    top = kit.box_mesh((0.1, 0.4, 0.1), (2.18, 0.2 + 0.25, 2.0))
+    node = SceneNode("floor0/room0/furniture/stand", "furniture",
+                     trimesh.util.concatenate([foot, top]),
+                     extras={"name": "stand", "model": "stand", "room": 0},
+                     static=False, parts=(foot, top))
+    report = check_physics(kit.scene_of(plan), nodes + [node])
+    result = _item(report, "stand")
+    assert not result.stable or result.tipped
+    assert not report.passed
