@@ -20,6 +20,7 @@ returned as ``(minx, minz, maxx, maxz)`` relative to the item's centre.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,6 +44,9 @@ __all__ = [
 
 Box = tuple[float, float, float, float]
 """An axis-aligned rectangle ``(minx, minz, maxx, maxz)`` in plan coordinates."""
+
+_ARC_SEGMENTS = 16
+"""Polygon segments per quarter circle of a door's swing."""
 
 _PROBE = 1e-3
 """How far off a wall line (m) a point is probed to tell which room lies on that side."""
@@ -164,7 +168,9 @@ def door_keepouts(plan: FloorPlan, room_id: int) -> list[Keepout]:
             towards_latch = along if door.hinge == "start" else -along
             hinge = face - towards_latch * door.width / 2
             quadrant = _rect(hinge, towards_latch * door.width, normal * door.width)
-            swing = Point(*hinge).buffer(door.width, quad_segs=16).intersection(quadrant)
+            # the polygon circumscribes the leaf's circle, so the zone contains the whole arc
+            radius = door.width / math.cos(math.pi / (4 * _ARC_SEGMENTS))
+            swing = Point(*hinge).buffer(radius, quad_segs=_ARC_SEGMENTS).intersection(quadrant)
             zones.append(Keepout(f"the swing of {label}", swing))
         else:
             start = face - along * door.width / 2

@@ -29,6 +29,7 @@ import re
 from pathlib import Path
 
 import numpy as np
+from shapely import STRtree
 from shapely.geometry import LineString, Point, Polygon, box
 
 __all__ = ["read_furniture_rules", "furniture_violations"]
@@ -147,24 +148,24 @@ def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0) ->
     def rule_of(item):
         return rules.get((types[item.room], item.name.lower()))
 
+    shrunk = [_shrunk(item.footprint()) for item in solid]
+    tree = STRtree(shrunk)
     for item in items:
         if item.is_detail:
             continue
         room = plan.room(item.room)
         if not room.interior.buffer(TOL).covers(item.footprint()):
             problems.append(f"{item.name} (room {item.room}) is not inside its room's free floor")
-    for i, a in enumerate(solid):
-        for b in solid[i + 1:]:
-            if _shrunk(a.footprint()).intersects(_shrunk(b.footprint())):
-                problems.append(f"{a.name} (room {a.room}) overlaps {b.name} (room {b.room})")
+    for i, j in zip(*tree.query(shrunk, predicate="intersects")):
+        if i < j:
+            a, b = solid[i], solid[j]
+            problems.append(f"{a.name} (room {a.room}) overlaps {b.name} (room {b.room})")
     for door in plan.doors:
         if door.swing_room == OUTSIDE:
             continue
-        swing = _shrunk(door_swing_area(plan, door))
-        for item in solid:
-            if _shrunk(item.footprint()).intersects(swing):
-                problems.append(f"{item.name} (room {item.room}) is in the swing of door {door.id}")
-    for item in solid:
+        for k in tree.query(_shrunk(door_swing_area(plan, door)), predicate="intersects"):
+            problems.append(f"{solid[k].name} (room {solid[k].room}) is in the swing of door {door.id}")
+    for item, footprint in zip(solid, shrunk):
         rule = rule_of(item)
         if rule is None:
             problems.append(f"{item.name} (room {item.room}) has no rule")
@@ -174,19 +175,19 @@ def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0) ->
                 if window.room != item.room:
                     continue
                 band = window_band(plan, window, item.size[2] + rule["front"])
-                if _shrunk(item.footprint()).intersects(_shrunk(band)):
+                if footprint.intersects(_shrunk(band)):
                     problems.append(f"{item.name} (room {item.room}) covers window {window.id}")
         family = {item.parent} | {c.name for c in items if c.parent == item.name and c.room == item.room}
-        walls = plan.room(item.room).interior
+        walls = plan.room(item.room).interior.buffer(TOL)
         for side, clearance in _clearance_boxes(item, rule):
-            if not walls.buffer(TOL).covers(clearance):
+            if not walls.covers(clearance):
                 problems.append(f"{item.name} (room {item.room}): clearance {side} reaches into a wall")
-            for other in solid:
+            for k in tree.query(_shrunk(clearance), predicate="intersects"):
+                other = solid[k]
                 if other is item or other.room != item.room or other.name in family:
                     continue
-                if _shrunk(clearance).intersects(_shrunk(other.footprint())):
-                    problems.append(f"{item.name} (room {item.room}): clearance {side} blocked by "
-                                    f"{other.name}")
+                problems.append(f"{item.name} (room {item.room}): clearance {side} blocked by "
+                                f"{other.name}")
     for item in items:
         if item.is_detail or item.parent is None:
             continue
