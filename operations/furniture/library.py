@@ -354,6 +354,18 @@ def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -
     return matrix
 
 
+def _posed(mesh: trimesh.Trimesh, matrix: np.ndarray) -> trimesh.Trimesh:
+    """A new mesh: ``mesh`` moved by ``matrix`` (from :func:`item_transform`), with its colours.
+
+    Built directly from the moved vertices, which is several times faster than
+    ``mesh.copy().apply_transform(matrix)`` (a deep copy, then a second pass over the
+    copy). The matrix turns and scales by positive factors, so the faces keep their
+    winding.
+    """
+    return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
+                           faces=mesh.faces.copy(), visual=mesh.visual.copy(), process=False)
+
+
 def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> SceneNode:
     """The scene node of a placed furniture item: its model posed in world coordinates.
 
@@ -369,8 +381,8 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
     """
     model = library.get(item.model)
     matrix = item_transform(item, model, plan.floor_y)
-    parts = tuple(p.copy().apply_transform(matrix) for p in model.parts)
-    mesh = model.mesh.copy().apply_transform(matrix)
+    parts = tuple(_posed(p, matrix) for p in model.parts)
+    mesh = _posed(model.mesh, matrix)
     room = plan.room(item.room)
     # an affine map scales every volume (and convex hull volume) by |det|
     volume = model.volume * abs(float(np.linalg.det(matrix[:3, :3])))
