@@ -112,7 +112,8 @@ class RoomReach:
 @dataclass(frozen=True)
 class FloorReach:
     """One floor's result. ``start`` is ``"front_door"`` (the robot starts outside door
-    ``start_door``) or ``"largest_room"`` (inside ``start_room``); ``note`` says why."""
+    ``start_door``) or ``"largest_room"`` (inside ``start_room``); ``note`` says why.
+    ``elapsed_seconds`` (wall-clock) is left out of :meth:`to_dict`, which is deterministic."""
 
     floor: int
     start: str
@@ -143,7 +144,6 @@ class FloorReach:
             "reachable_rooms": [r.room for r in self.rooms if r.reachable],
             "unreachable_rooms": [r.room for r in self.unreachable],
             "rooms": [r.to_dict() for r in self.rooms],
-            "elapsed_seconds": round(self.elapsed_seconds, 4),
         }
 
 

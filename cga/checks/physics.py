@@ -162,7 +162,8 @@ class PhysicsReport:
 
     ``ignored`` lists the static furniture nodes that were not simulated (rugs, door and
     window details). ``simulated_seconds`` may be less than ``settle_seconds`` when every
-    item came to rest early. ``elapsed_seconds`` is wall-clock time of the whole check.
+    item came to rest early. ``elapsed_seconds`` is wall-clock time of the whole check; it
+    is left out of :meth:`to_dict`, so two builds with one seed give the same report.
     """
 
     items: tuple[ItemPhysics, ...]
@@ -204,7 +205,7 @@ class PhysicsReport:
         return text
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready form for the scene file (``checks.physics``)."""
+        """JSON-ready form for the scene file (``checks.physics``); deterministic."""
         return {
             "passed": self.passed,
             "thresholds": {
@@ -215,7 +216,6 @@ class PhysicsReport:
             "settle_seconds": self.settle_seconds,
             "simulated_seconds": round(self.simulated_seconds, 4),
             "timestep": self.timestep,
-            "elapsed_seconds": round(self.elapsed_seconds, 4),
             "item_count": len(self.items),
             "failed_count": len(self.failures),
             "max_penetration_m": round(self.max_penetration, 4),

@@ -4,7 +4,6 @@ real build, so a bug there cannot hide a bug in the checks."""
 
 from __future__ import annotations
 
-from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -125,8 +124,8 @@ def kit() -> SimpleNamespace:
     """Scene-building helpers (see the module docstring)."""
     return SimpleNamespace(add_door=add_door, find_wall=find_wall, structure=structure,
                            box_item=box_item, box_mesh=box_mesh, scene_of=scene_of,
-                           plan_from_rectangles=plan_from_rectangles, replace=replace,
-                           OUTSIDE=OUTSIDE, FloorSettings=FloorSettings)
+                           plan_from_rectangles=plan_from_rectangles, OUTSIDE=OUTSIDE,
+                           FloorSettings=FloorSettings)
 
 
 @pytest.fixture

@@ -182,3 +182,12 @@ def test_barely_unbalanced_item_is_caught(kit, room):
     result = _item(report, "stand")
     assert not result.stable or result.tipped
     assert not report.passed
+
+
+def test_same_scene_gives_the_same_report(kit, room):
+    plan, nodes = room
+    items = [kit.box_item("chair", (0.5, 0.9, 0.5), (2.0, 2.0), lift=0.3),
+             kit.box_item("table", (1.2, 0.75, 0.8), (3.0, 3.0))]
+    first = check_physics(kit.scene_of(plan), nodes + items).to_dict()
+    second = check_physics(kit.scene_of(plan), nodes + items).to_dict()
+    assert json.dumps(first, sort_keys=True) == json.dumps(second, sort_keys=True)
