@@ -4,8 +4,9 @@ A ground robot collides with whatever stands between its wheels and its top: wal
 furniture that reaches into that height band (a table top at 0.75 m blocks a robot of
 1.2 m, a rug does not). For one floor plan, :func:`occupancy_grid` takes every scene node
 whose solid meets the band (relative to the floor's walking surface), projects the slice
-of the solid inside the band onto the floor (exactly, with manifold3d: clip by two planes,
-then take the shadow), and rasterises the shadows. A wall keeps its door gaps open
+of the solid inside the band onto the floor exactly (convex furniture parts directly;
+other solids, such as walls with openings, with manifold3d: clip by two planes, then take
+the shadow), and rasterises the shadows. A wall keeps its door gaps open
 because the slice of the band through a door opening is empty, and a window with its
 sill inside the band stays closed because the wall below the sill is in the band.
 
@@ -26,7 +27,6 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-import manifold3d
 import numpy as np
 import shapely
 import trimesh
@@ -263,8 +263,8 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
 
     Notes
     -----
-    One exact clip-and-project per node (manifold3d) and one polygon fill per shadow;
-    about 10–30 ms for a furnished floor at 5 cm.
+    One exact clip-and-project per node and one polygon fill per shadow; about 20 ms
+    for a furnished 14 m × 10 m floor at 5 cm.
     """
     if not resolution > 0:
         raise ValueError(f"occupancy_grid: resolution must be positive, got {resolution!r}")

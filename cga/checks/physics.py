@@ -17,9 +17,9 @@ their openings) is not simulated.
 
 Settling runs for ``settle_seconds`` of simulated time at ``timestep``, and stops early
 once every item has been at rest (speed below 1 mm/s and spin below 0.01 rad/s) for
-0.2 s: items that rest that still move less than the thresholds over what is left of the
-settle time, so the early stop cannot hide a failure, and a furnished house settles in a
-fraction of the time. An item balanced so finely that it starts to tip too slowly to
+0.1 s: at those speeds an item covers less than the thresholds in what is left of the
+settle time, so the early stop does not hide a failure, and a furnished house settles
+in a tenth of the time. An item balanced so finely that it starts to tip too slowly to
 notice in that time is caught statically: its centre of mass must lie over the hull of
 the points it stands on (its vertices within 5 mm of its lowest point).
 """
@@ -273,8 +273,8 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
     Notes
     -----
     Cost is dominated by the simulation: about (items × settled steps) convex-vs-mesh
-    contact tests. Overlap is measured with ``getClosestPoints`` (distance ≤ 0) before
-    any step, between each item and every body whose bounding box meets its own; the
+    contact tests. Overlap is measured with ``getClosestPoints`` before any step, between
+    each item and every body whose bounding box meets its own; the
     collision margins pybullet adds around shapes (1 mm) and the 2 mm by which item parts
     are shrunk to offset them are accounted for, so an item standing on the floor has
     penetration 0.
@@ -319,7 +319,8 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
 
 @dataclass
 class _Body:
-    """A dynamic item in the simulation: its body id, start pose and bounding box."""
+    """A dynamic item in the simulation: body id, mass, starting centre of mass, lowest
+    point, and how far its centre of mass lies outside what it stands on."""
 
     uid: int
     mass: float
@@ -405,7 +406,7 @@ class _World:
             near = self.pb.getOverlappingObjects(lo, hi, physicsClientId=self.client) or []
             deepest, which = 0.0, None
             for other in sorted({uid for uid, _ in near if uid != body.uid}):
-                points = self.pb.getClosestPoints(body.uid, other, 0.0,
+                points = self.pb.getClosestPoints(body.uid, other, _SHRINK,
                                                   physicsClientId=self.client)
                 if not points:
                     continue
