@@ -1,0 +1,97 @@
+"""Batch throughput: ``run_batch`` on the house demo, without and with the checks.
+
+Each run builds ``-n`` fresh seeds into a new temporary folder (nothing to resume) with
+the options ``cga batch`` uses (the default files: glb, scene JSON, plans), in ``--jobs``
+worker processes. The table gives, per run, the wall time, houses per second and the
+batch report (validity and furniture placement rates, mean and p95 seconds per house);
+with ``--repeats`` > 1 the minimum and median houses/s follow. The machine's other load
+slows the wall clock, so the CPU seconds of the run (this process and its workers) are
+given too, with the throughput they allow: houses / (CPU seconds / jobs), the rate of
+``--jobs`` otherwise idle cores.
+
+    python benchmarks/bench_batch.py [-n 100] [--physics-n 20] [--jobs 2] [--repeats 1]
+                                     [--modes no-physics,physics] [--grammar FILE]
+
+Target (2 cores): ``-n 100 --jobs 2 --no-physics`` at ≥ 5 houses/s. The dataset figure
+in RESULTS.md is ``--modes physics --physics-n 200``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import resource
+import statistics
+import tempfile
+from pathlib import Path
+
+from cga.batch import BatchReport, run_batch
+from cga.export import DEFAULT_FORMATS
+
+ROOT = Path(__file__).resolve().parents[1]
+TARGET_HOUSES_PER_SECOND = 5.0
+MODES = {"no-physics": False, "physics": True}
+"""Mode name → whether the physics and navigability checks run."""
+
+
+def _cpu_seconds() -> float:
+    """CPU time (user + system) of this process and of its finished worker processes."""
+    own, workers = (resource.getrusage(who) for who in
+                    (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+    return own.ru_utime + own.ru_stime + workers.ru_utime + workers.ru_stime
+
+
+def one_run(grammar: Path, count: int, jobs: int, physics: bool) -> tuple[BatchReport, float]:
+    """A fresh batch of ``count`` seeds (0 .. count-1) in a temporary folder, and the CPU
+    seconds it took (the worker pool is shut down, so its children are counted, when
+    ``run_batch`` returns)."""
+    with tempfile.TemporaryDirectory(prefix="cga-batch-bench-") as out:
+        cpu = _cpu_seconds()
+        report = run_batch(grammar, count=count, out_dir=out, jobs=jobs,
+                           build_options={"physics": physics, "formats": list(DEFAULT_FORMATS)})
+        return report, _cpu_seconds() - cpu
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("-n", "--count", type=int, default=100,
+                        help="houses per run without physics")
+    parser.add_argument("--physics-n", type=int, default=20, help="houses per run with physics")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--repeats", type=int, default=1)
+    parser.add_argument("--modes", default=",".join(MODES),
+                        help=f"comma-separated: {', '.join(MODES)}")
+    parser.add_argument("--grammar", type=Path, default=ROOT / "demos" / "house.grammar")
+    args = parser.parse_args()
+    modes = [m.strip() for m in args.modes.split(",") if m.strip()]
+    if any(m not in MODES for m in modes) or args.repeats < 1:
+        parser.error(f"--modes takes {', '.join(MODES)}; --repeats must be ≥ 1")
+
+    print(f"## run_batch({args.grammar.name}, jobs={args.jobs})\n")
+    print("| mode | houses | wall s | houses/s | CPU s | houses/s on idle cores | valid | placed "
+          "| mean s | p95 s | errors |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    rates: dict[str, list[float]] = {}
+    for mode in modes:
+        count = args.count if mode == "no-physics" else args.physics_n
+        for _ in range(args.repeats):
+            report, cpu = one_run(args.grammar, count, args.jobs, MODES[mode])
+            data = report.to_dict()
+            rates.setdefault(mode, []).append(report.houses_per_second)
+            print(f"| {mode} | {report.count} | {report.wall_seconds:.1f} | "
+                  f"{report.houses_per_second:.2f} | {cpu:.1f} | "
+                  f"{report.built_now / (cpu / args.jobs):.2f} | {data['validity_rate']:.1%} | "
+                  f"{data['placement_rate']:.1%} | {report.mean_seconds:.3f} | "
+                  f"{report.p95_seconds:.3f} | {data['errors']} |")
+    print()
+    for mode, values in rates.items():
+        line = (f"{mode}: houses/s min {min(values):.2f}, median {statistics.median(values):.2f} "
+                f"over {len(values)} run{'s' * (len(values) != 1)}")
+        if mode == "no-physics":
+            best = statistics.median(values)
+            line += (f"; target ≥ {TARGET_HOUSES_PER_SECOND:g}/s: "
+                     f"{'met' if best >= TARGET_HOUSES_PER_SECOND else 'NOT met'}")
+        print(line)
+
+
+if __name__ == "__main__":
+    main()
