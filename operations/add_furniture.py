@@ -48,7 +48,9 @@ class AddFurniture(Operation):
         Rounds of separation steering of the random start positions.
     clearanceTries:
         Attempts per room: while items are left out, the room is solved again from new
-        random starts, keeping the layout that places the most items.
+        random starts, keeping the layout that places the most items (stopping early
+        after :data:`~cga.operations.furniture.solver.PATIENCE` attempts in a row that
+        place no more).
 
     Every item that cannot be placed is left out with a warning naming the item, the
     room and the reason; the warnings travel on the floor plan's ``diagnostics``.

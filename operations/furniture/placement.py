@@ -400,7 +400,7 @@ class Placer:
                         lo, hi = (minx, maxx) if axis == 0 else (minz, maxz)
                         for pose in self._free_poses(spec, rotation, axis, point[1 - axis],
                                                      lo, hi, point[axis]):
-                            options.append((abs((pose.x, pose.z)[axis] - point[axis]),
+                            options.append((abs(_coordinate(pose, axis) - point[axis]),
                                             rotation, axis, pose))
                             break
                 yield from (pose for *_, pose in sorted(options, key=lambda o: o[:3]))
@@ -458,10 +458,8 @@ class Placer:
                 self.sides[spec.name] = (parent, k)
                 return None
             if first is None:
-                centre = (lo + hi) / 2
-                probe = Pose(centre, fixed, rotation) if axis == 0 else Pose(fixed, centre,
-                                                                              rotation)
-                first = self._conflict(spec, probe)
+                first = self._conflict(spec, _pose(axis, (lo + hi) / 2, 1 - axis, fixed,
+                                                   rotation))
         detail = f" ({first.describe()})" if first else ""
         return f"no free side of {parent}{detail}"
 
@@ -483,7 +481,7 @@ class Placer:
         """Try to seat ``spec`` with the siblings already on ``side``, all evenly spaced."""
         axis, fixed, lo, hi = geometry
         siblings = sorted((n for n, (p, k) in self.sides.items() if p == parent and k == side),
-                          key=lambda n: (self.layout.placed[n][1].x, self.layout.placed[n][1].z)[axis])
+                          key=lambda n: _coordinate(self.layout.placed[n][1], axis))
         width = 2 * _half(spec, rotation, axis)
         count = len(siblings) + 1
         if count > 1 and count * width > hi - lo + 1e-9:
@@ -496,9 +494,7 @@ class Placer:
             for name, slot in zip(order, slots):
                 item = spec if name == spec.name else saved[name][0]
                 pose_rotation = rotation if name == spec.name else saved[name][1].rotation
-                pose = Pose(slot, fixed, pose_rotation) if axis == 0 else Pose(
-                    fixed, slot, pose_rotation)
-                if self._try(item, pose) is not None:
+                if self._try(item, _pose(axis, slot, 1 - axis, fixed, pose_rotation)) is not None:
                     break
                 seated.append(name)
             if len(seated) == count:
@@ -554,7 +550,7 @@ class Placer:
         _, near, _, _ = self._side_geometry(spec, rotation, pbox, f, lo_gap)
         _, far, _, _ = self._side_geometry(spec, rotation, pbox, f, hi_gap)
         _, want, _, _ = self._side_geometry(spec, rotation, pbox, f, preferred_gap)
-        lateral = (ppose.x, ppose.z)[lateral_axis]
+        lateral = _coordinate(ppose, lateral_axis)
         lo, hi = sorted((near, far))
         if self._slide(spec, rotation, axis, lateral, lo, hi, want) is not None:
             return None
@@ -564,7 +560,7 @@ class Placer:
             pose = self._slide(spec, rotation, lateral_axis, along, plo, phi, lateral)
             if pose is not None:
                 self._face_child(parent, spec.name, lateral_axis,
-                                 (pose.x, pose.z)[lateral_axis])
+                                 _coordinate(pose, lateral_axis))
                 return None
         detail = f" ({first.describe()})" if first else ""
         return f"no free spot in front of {parent}{detail}"
@@ -587,7 +583,7 @@ class Placer:
                 facing.append((ahead, edge))
         if not facing:
             return f"no wall opposite {parent}"
-        lateral = (ppose.x, ppose.z)[lateral_axis]
+        lateral = _coordinate(ppose, lateral_axis)
         first: Conflict | None = None
         for ahead, edge in sorted(facing, key=lambda item: item[0]):
             parts = spec.parts(rotation)
@@ -604,7 +600,7 @@ class Placer:
             pose = self._slide(spec, rotation, lateral_axis, fixed, lo, hi, lateral)
             if pose is not None:
                 self._face_child(parent, spec.name, lateral_axis,
-                                 (pose.x, pose.z)[lateral_axis])
+                                 _coordinate(pose, lateral_axis))
                 return None
             if first is None:
                 centre = min(max(lateral, lo), hi)
@@ -616,7 +612,7 @@ class Placer:
         """Shift ``parent`` sideways to line up with ``child`` if it has no other children
         placed, is not a corner item and nothing blocks the new position."""
         pspec, ppose = self.layout.placed[parent]
-        if pspec.rule.is_in_corner or abs((ppose.x, ppose.z)[axis] - value) < 1e-9:
+        if pspec.rule.is_in_corner or abs(_coordinate(ppose, axis) - value) < 1e-9:
             return
         others = [n for n in self.related.get(parent, frozenset())
                   if n != child and n != pspec.rule.pair_with and n in self.layout.placed]
@@ -630,6 +626,10 @@ class Placer:
 def _half(spec: ItemSpec, rotation: int, axis: int) -> float:
     body = spec.parts(rotation)[0].box
     return (body[axis + 2] - body[axis]) / 2
+
+
+def _coordinate(pose: Pose, axis: int) -> float:
+    return pose.x if axis == 0 else pose.z
 
 
 def _pose(axis_a: int, value_a: float, axis_b: int, value_b: float, rotation: int) -> Pose:

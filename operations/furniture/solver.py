@@ -10,7 +10,8 @@ Per room (thesis algorithms 5-7, DESIGN §8):
    placed is left out with the reason;
 3. if something was left out, the room is solved again from new random starts, up to
    ``attempts`` times in all, and the layout that places the most items is kept (the
-   first of equals). The thesis instead nudged the blocked item step by step for
+   first of equals); after :data:`PATIENCE` attempts in a row that place no more, the
+   room stops retrying. The thesis instead nudged the blocked item step by step for
    ``clearanceTries`` steps; with exact geometry a nudge cannot help, a new start can.
 
 Doors and windows get their detail items (:mod:`.details`). The solver is a pure
@@ -34,7 +35,7 @@ from .placement import Placer
 from .rules import FurnitureRules
 from .steering import random_start, separation_steering
 
-__all__ = ["RoomSite", "RoomResult", "furnish_room", "furnish_plan"]
+__all__ = ["PATIENCE", "RoomSite", "RoomResult", "furnish_room", "furnish_plan"]
 
 STAGE = "add_furniture"
 PATIENCE = 5
@@ -110,6 +111,8 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
         Rounds of separation steering.
     attempts:
         Solves from fresh random starts while items are left out (at least one).
+    patience:
+        Consecutive attempts without improvement after which the room stops retrying.
 
     Returns
     -------
