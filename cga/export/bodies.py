@@ -16,10 +16,10 @@ of mass (its convex parts at uniform density) and is turned by the item's yaw
   (exact extents, since turns are quarter turns), about the centre of mass.
 
 Solid items are dynamic with the mass of their ``mass`` extra and collide through their
-convex parts (shrunk by :data:`CONTACT_SHRINK`), one collision element each. Static furniture (door leaves, window frames,
-rugs) is fixed and visual only: the physics and navigability checks ignore it, a rug
-lies under what stands on it, and a door leaf must not close the gap the navigability
-check drove through.
+convex parts (shrunk by :data:`CONTACT_SHRINK`), one collision element each. Static
+furniture (door leaves, window frames, rugs) is fixed and visual only: the physics and
+navigability checks ignore it, a rug lies under what stands on it, and a door leaf must
+not close the gap the navigability check drove through.
 
 :func:`write_body_meshes` writes the OBJ files both URDF and SDF refer to, under
 ``meshes/`` next to the world file.

@@ -3,8 +3,9 @@
 The OBJ is in the world frame (metres, y up), like the glTF. Each node becomes a group
 named by its semantic path (``g floor0/room1_Livingroom/furniture/sofa``) using a
 material per node kind (walls, slabs, ...) or per furniture model when the item has
-colours of its own; meshes with vertex colours keep them (``v x y z r g b``). The writer is hand-made on purpose: trimesh's OBJ export merges a
-scene into one mesh and loses the node names this format is asked for.
+colours of its own; meshes with vertex colours keep them (``v x y z r g b``). The writer
+is hand-made on purpose: trimesh's OBJ export merges a scene into one mesh and loses the
+node names this format is asked for.
 
 :func:`obj_text` and :func:`mtl_text` are reused by the robot exporters for their mesh
 files (in the ROS frame).

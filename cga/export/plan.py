@@ -37,7 +37,8 @@ from cga.fsutil import atomic_write
 from cga.model import OUTSIDE, Door, FloorPlan, FurnitureItem, Room, Wall
 from cga.scene import Scene, SceneNode
 
-from .drawing import Arc, Area, Drawing, Point, Polyline, Style, Text, render_png, render_svg, text_width
+from .drawing import (Arc, Area, Drawing, Point, Polyline, Style, Text, render_png, render_svg,
+                      text_width)
 from .palette import hex_color, room_color
 
 __all__ = ["plan_drawing", "export_plans"]
@@ -434,8 +435,9 @@ def _draw_north_arrow(drawing: Drawing, centre: Point) -> None:
     """An arrow pointing up the page (north = world −z = ROS +y)."""
     x, y = centre
     r = 17.0
-    drawing.add("annotation", Arc((x, y), r, 0.0, math.pi * 0.999, Style(stroke=_INK, width=1.0)))
-    drawing.add("annotation", Arc((x, y), r, math.pi, math.pi * 1.999, Style(stroke=_INK, width=1.0)))
+    ring = Style(stroke=_INK, width=1.0)
+    drawing.add("annotation", Arc((x, y), r, 0.0, math.pi * 0.999, ring))
+    drawing.add("annotation", Arc((x, y), r, math.pi, math.pi * 1.999, ring))
     drawing.add("annotation", Area((((x, y - r + 2), (x + 7, y + r - 6), (x, y + r - 11),
                                      (x - 7, y + r - 6)),), Style(fill=_INK), css_class="north"))
     drawing.add("annotation", Text((x, y - r - 5), "N", 12, _INK, bold=True, css_class="north"))

@@ -40,9 +40,9 @@ def test_demo_glb_has_no_validation_errors(grammar, tmp_path):
     build(grammar, seed=5, out_dir=tmp_path, formats=["glb"], quiet=True)
     script = tmp_path / "validate.js"
     script.write_text(SCRIPT)
-    result = subprocess.run(
-        ["node", str(script), str(Path(VALIDATOR).resolve()), str(tmp_path / f"{grammar.stem}.glb")],
-        capture_output=True, text=True, timeout=120, check=False)
+    glb = tmp_path / f"{grammar.stem}.glb"
+    result = subprocess.run(["node", str(script), str(Path(VALIDATOR).resolve()), str(glb)],
+                            capture_output=True, text=True, timeout=120, check=False)
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     errors = [m for m in report["issues"]["messages"] if m["severity"] == 0]

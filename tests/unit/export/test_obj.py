@@ -43,7 +43,8 @@ def test_materials_carry_kind_colours(obj_files):
     _, mtl = obj_files
     blocks = dict(re.findall(r"newmtl (\S+)\n(?:.*\n)*?Kd ([\d. ]+)\n", mtl.read_text()))
     assert set(blocks) == {"wall", "slab", "furniture"}
-    assert [float(v) for v in blocks["wall"].split()] == pytest.approx(KIND_COLORS["wall"], abs=1e-4)
+    wall = [float(v) for v in blocks["wall"].split()]
+    assert wall == pytest.approx(KIND_COLORS["wall"], abs=1e-4)
 
 
 def test_coloured_furniture_keeps_its_colours(small_scene, tmp_path):
