@@ -34,7 +34,7 @@ def _hex(code: str) -> RGB:
 ROOM_COLORS: dict[str, RGB] = {
     "livingroom": _hex("#f3dcb2"),
     "kitchen": _hex("#f7eba0"),
-    "diningroom": _hex("#f5d3a6"),
+    "diningroom": _hex("#f4c6b4"),
     "bedroom": _hex("#c9dcf2"),
     "childroom": _hex("#d6cdf0"),
     "bathroom": _hex("#b8e3e0"),
