@@ -18,6 +18,7 @@ write can be removed by naming a glob pattern (``replace_matching``).
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import os
 import shutil
 import tempfile
@@ -25,6 +26,12 @@ from collections.abc import Iterator
 from pathlib import Path
 
 __all__ = ["atomic_write", "atomic_output_dir"]
+
+_staging_folder: contextvars.ContextVar[Path | None] = contextvars.ContextVar(
+    "cga_staging_folder", default=None)
+"""The staging folder of the innermost :func:`atomic_output_dir`, if any. Files written
+inside it skip their own fsync: the folder is flushed once before it is committed (a
+URDF export writes hundreds of files, and one fsync each dominated its cost)."""
 
 
 def _default_file_mode() -> int:
@@ -64,13 +71,26 @@ def atomic_write(path: str | os.PathLike[str], data: bytes | str) -> Path:
         with os.fdopen(fd, "wb") as handle:
             handle.write(payload)
             handle.flush()
-            os.fsync(handle.fileno())
+            staging = _staging_folder.get()
+            if staging is None or not target.resolve().is_relative_to(staging):
+                os.fsync(handle.fileno())
         os.chmod(tmp, _default_file_mode())
         os.replace(tmp, target)
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
     return target
+
+
+def _flush(files: list[Path]) -> None:
+    """Make staged files durable before they are moved into place: one ``sync`` where
+    the platform has it, else an fsync per file."""
+    if hasattr(os, "sync"):
+        os.sync()
+        return
+    for path in files:
+        with open(path, "rb+") as handle:
+            os.fsync(handle.fileno())
 
 
 @contextlib.contextmanager
@@ -83,10 +103,11 @@ def atomic_output_dir(target: str | os.PathLike[str], *,
     target:
         The folder that receives the files (created if missing).
     replace_matching:
-        Optional glob pattern (relative to ``target``, e.g. ``"house.*"``). After the new
-        files are in place, files in ``target`` matching it that this build did not
-        write are deleted, so a rebuild with fewer floors leaves no stale
-        ``house.floor3.svg`` behind. Nothing is deleted if the build fails.
+        Optional file-name glob (e.g. ``"house.*"``). After the new files are in place,
+        files matching it that this build did not write are deleted from ``target`` and
+        from every subfolder this build wrote into (``urdf/``, ``meshes/``), so a
+        rebuild with fewer floors or items leaves no stale ``house.floor3.svg`` behind.
+        Other folders are never touched. Nothing is deleted if the build fails.
 
     Yields
     ------
@@ -103,19 +124,28 @@ def atomic_output_dir(target: str | os.PathLike[str], *,
     final = Path(target)
     final.parent.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{final.name}.", suffix=".staging", dir=final.parent))
+    token = _staging_folder.set(staging.resolve())
     try:
         yield staging
+        _staging_folder.reset(token)
+        token = None
+        staged = sorted(p for p in staging.rglob("*") if p.is_file())
+        _flush(staged)
         final.mkdir(parents=True, exist_ok=True)
         written: set[Path] = set()
-        for source in sorted(p for p in staging.rglob("*") if p.is_file()):
+        for source in staged:
             relative = source.relative_to(staging)
             destination = final / relative
             destination.parent.mkdir(parents=True, exist_ok=True)
             os.replace(source, destination)
             written.add(relative)
         if replace_matching is not None:
-            for stale in sorted(final.glob(replace_matching)):
-                if stale.is_file() and stale.relative_to(final) not in written:
-                    stale.unlink()
+            folders = {final} | {final / relative.parent for relative in written}
+            for folder in sorted(folders):
+                for stale in sorted(folder.glob(replace_matching)):
+                    if stale.is_file() and stale.relative_to(final) not in written:
+                        stale.unlink()
     finally:
+        if token is not None:
+            _staging_folder.reset(token)
         shutil.rmtree(staging, ignore_errors=True)

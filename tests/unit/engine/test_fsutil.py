@@ -74,3 +74,16 @@ def test_output_dir_removes_stale_matching_files_only(tmp_path):
         (stage / "house.glb").write_text("new")
     assert sorted(p.name for p in target.iterdir()) == ["house.glb", "notes.txt"]
     assert (target / "house.glb").read_text() == "new"
+
+
+def test_output_dir_removes_stale_files_in_subfolders_it_writes_to(tmp_path):
+    target = tmp_path / "out"
+    (target / "meshes").mkdir(parents=True)
+    (target / "docs").mkdir()
+    for name in ("meshes/house.sofa.old.obj", "meshes/house.bed.obj", "docs/house.md"):
+        (target / name).write_text("old")
+    with atomic_output_dir(target, replace_matching="house.*") as stage:
+        (stage / "meshes").mkdir()
+        (stage / "meshes" / "house.bed.obj").write_text("new")
+    assert sorted(p.name for p in (target / "meshes").iterdir()) == ["house.bed.obj"]
+    assert (target / "docs" / "house.md").read_text() == "old"  # not a folder of this build
