@@ -13,8 +13,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -29,8 +27,7 @@ from cga.operations.floorplan.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
-from dcel_checks import narrowest_room_violation, validate_plan  # noqa: E402
+from dcel_checks import narrowest_room_violation, validate_plan
 
 MIN_WIDTH, MIN_AREA = 2.4, 6.0
 EXAMPLES_PER_KIND = 130  # 4 kinds: 520 storeys

@@ -8,7 +8,6 @@ furnished by the shipped furniture tables; the independent validator
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -21,8 +20,7 @@ from cga.errors import NoSolutionError
 from cga.operations.add_furniture import furnish_floor
 from cga.operations.furniture.library import default_library
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
-from furniture_checks import furniture_violations  # noqa: E402
+from furniture_checks import furniture_violations
 
 RULES = Path(__file__).resolve().parents[2] / "rules"
 FLOORS = 300

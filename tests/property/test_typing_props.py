@@ -10,8 +10,6 @@ shapely + networkx, independent of the typing code), or a NoSolutionError says w
 rule failed and why.
 """
 
-import sys
-from pathlib import Path
 
 import numpy as np
 
@@ -24,8 +22,7 @@ from cga.operations.roomtyping.rules import load_rule_table
 from cga.operations.type_rooms import type_plan
 from cga.resources import resolve_resource
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
-from typing_checks import validate_typed_plan  # noqa: E402
+from typing_checks import validate_typed_plan
 
 SEEDS = 600
 MIN_SIDE = 3.0

@@ -10,8 +10,6 @@ part each. Floor 1 has a bed whose centre is at world x = 2, z = 3 (the frames t
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import networkx as nx
 import numpy as np
@@ -25,8 +23,6 @@ from cga.model import (OUTSIDE, Door, FloorPlan, FloorSettings, FurnitureItem, O
 from cga.scene import Scene, SceneNode
 from cga.shape import Mass, Shape
 
-# the independent validators in tests/support (ros_map_checks)
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "support"))
 
 STOREY = 3.0
 SETTINGS = FloorSettings()

@@ -1,11 +1,8 @@
 """Fixtures for the furniture tests: hand-built one-room floors and the shipped models.
-
-Also makes ``tests/support`` (the independent validators) importable.
 """
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
@@ -14,7 +11,6 @@ from shapely.geometry import box
 from cga.model import OUTSIDE, Door, FloorPlan, FloorSettings, Room, Wall, Window
 from cga.operations.furniture.library import ModelLibrary, default_library
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "support"))
 
 RULES_DIR = Path(__file__).resolve().parents[3] / "rules"
 
