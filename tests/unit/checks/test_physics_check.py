@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 import trimesh
 
@@ -191,3 +192,34 @@ def test_same_scene_gives_the_same_report(kit, room):
     first = check_physics(kit.scene_of(plan), nodes + items).to_dict()
     second = check_physics(kit.scene_of(plan), nodes + items).to_dict()
     assert json.dumps(first, sort_keys=True) == json.dumps(second, sort_keys=True)
+
+
+def test_wardrobe_on_a_finely_cut_slab_against_a_wall_rests(kit):
+    """Regression (house seed 71): a slab triangulated as make_floor leaves it (T-junction
+    vertices on its outline, long thin triangles) and a wardrobe flush against a wall. The
+    slab's internal edges under the wardrobe push it sideways; against the wall that
+    became a rocking walk of 2 cm until item sides were kept clear of walls."""
+    outline = [(0.0, 0.0), (4.59, 0.0), (7.7, 0.0), (14.0, 0.0), (14.0, 5.16), (14.0, 10.0),
+               (7.7, 10.0), (0.0, 10.0), (0.0, 6.29)]
+    vertices = [(x, 0.0, z) for x, z in outline] + [(x, 0.2, z) for x, z in outline]
+    faces = [[8, 0, 1], [2, 3, 4], [4, 5, 6], [2, 4, 6], [6, 7, 8], [1, 2, 6], [1, 6, 8],
+             [10, 9, 17], [13, 12, 11], [15, 14, 13], [15, 13, 11], [17, 16, 15],
+             [15, 11, 10], [17, 15, 10]]
+    faces += [f for k in range(9) for f in ([k, 9 + k, 9 + (k + 1) % 9],
+                                            [k, 9 + (k + 1) % 9, (k + 1) % 9])]
+    slab = trimesh.Trimesh(vertices, faces, process=False)
+    wall = kit.box_mesh((0.2, 2.8, 5.99), (4.59, 1.6, 3.195))
+    z = 0.92
+    boxes = [((3.93, 0.2, z + 0.02), (4.47, 0.28, z + 0.98)),
+             ((3.91, 0.28, z), (4.49, 2.2, z + 1.0)),
+             ((3.89, 0.3, z + 0.505), (3.91, 2.18, z + 0.995)),
+             ((3.89, 0.3, z + 0.005), (3.91, 2.18, z + 0.495))]
+    parts = tuple(kit.box_mesh(np.subtract(hi, lo), np.add(lo, hi) / 2) for lo, hi in boxes)
+    wardrobe = SceneNode("floor0/room2/furniture/wardrobe", "furniture",
+                         trimesh.util.concatenate(parts),
+                         extras={"name": "wardrobe", "mass": 89.4}, static=False, parts=parts)
+    nodes = [SceneNode("floor0/slab", "slab", slab), SceneNode("floor0/wall15", "wall", wall),
+             wardrobe]
+    report = check_physics(kit.scene_of(), nodes)
+    assert report.passed, report.summary()
+    assert report.items[0].displacement < 0.002
