@@ -1,8 +1,8 @@
 """Batch throughput: ``run_batch`` on the house demo, without and with the checks.
 
 Each run builds ``-n`` fresh seeds into a new temporary folder (nothing to resume) with
-the options ``cga batch`` uses (the default files: glb, scene JSON, plans), in ``--jobs``
-worker processes. The table gives, per run, the wall time, houses per second and the
+the options ``cga batch`` uses (the default files: glb, scene JSON, plans; ``--formats``
+changes them), in ``--jobs`` worker processes. The table gives, per run, the wall time, houses per second and the
 batch report (validity and furniture placement rates, mean and p95 seconds per house);
 with ``--repeats`` > 1 the minimum and median houses/s follow. The machine's other load
 slows the wall clock, so the CPU seconds of the run (this process and its workers) are
@@ -11,6 +11,7 @@ given too, with the throughput they allow: houses / (CPU seconds / jobs), the ra
 
     python benchmarks/bench_batch.py [-n 100] [--physics-n 20] [--jobs 2] [--repeats 1]
                                      [--modes no-physics,physics] [--grammar FILE]
+                                     [--formats glb,json,plan]
 
 Target (2 cores): ``-n 100 --jobs 2 --no-physics`` at ≥ 5 houses/s. The dataset figure
 in RESULTS.md is ``--modes physics --physics-n 200``.
@@ -40,14 +41,15 @@ def _cpu_seconds() -> float:
     return own.ru_utime + own.ru_stime + workers.ru_utime + workers.ru_stime
 
 
-def one_run(grammar: Path, count: int, jobs: int, physics: bool) -> tuple[BatchReport, float]:
+def one_run(grammar: Path, count: int, jobs: int, physics: bool, formats: list[str]
+            ) -> tuple[BatchReport, float]:
     """A fresh batch of ``count`` seeds (0 .. count-1) in a temporary folder, and the CPU
     seconds it took (the worker pool is shut down, so its children are counted, when
     ``run_batch`` returns)."""
     with tempfile.TemporaryDirectory(prefix="cga-batch-bench-") as out:
         cpu = _cpu_seconds()
         report = run_batch(grammar, count=count, out_dir=out, jobs=jobs,
-                           build_options={"physics": physics, "formats": list(DEFAULT_FORMATS)})
+                           build_options={"physics": physics, "formats": formats})
         return report, _cpu_seconds() - cpu
 
 
@@ -61,12 +63,15 @@ def main() -> None:
     parser.add_argument("--modes", default=",".join(MODES),
                         help=f"comma-separated: {', '.join(MODES)}")
     parser.add_argument("--grammar", type=Path, default=ROOT / "demos" / "house.grammar")
+    parser.add_argument("--formats", default=",".join(DEFAULT_FORMATS),
+                        help="files per house, comma-separated (default: as cga batch)")
     args = parser.parse_args()
     modes = [m.strip() for m in args.modes.split(",") if m.strip()]
+    formats = [f.strip() for f in args.formats.split(",") if f.strip()]
     if any(m not in MODES for m in modes) or args.repeats < 1:
         parser.error(f"--modes takes {', '.join(MODES)}; --repeats must be ≥ 1")
 
-    print(f"## run_batch({args.grammar.name}, jobs={args.jobs})\n")
+    print(f"## run_batch({args.grammar.name}, jobs={args.jobs}, files: {', '.join(formats)})\n")
     print("| mode | houses | wall s | houses/s | CPU s | houses/s on idle cores | valid | placed "
           "| mean s | p95 s | errors |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
@@ -74,7 +79,7 @@ def main() -> None:
     for mode in modes:
         count = args.count if mode == "no-physics" else args.physics_n
         for _ in range(args.repeats):
-            report, cpu = one_run(args.grammar, count, args.jobs, MODES[mode])
+            report, cpu = one_run(args.grammar, count, args.jobs, MODES[mode], formats)
             data = report.to_dict()
             rates.setdefault(mode, []).append(report.houses_per_second)
             print(f"| {mode} | {report.count} | {report.wall_seconds:.1f} | "

@@ -17,11 +17,13 @@ Three parts, each printed as Markdown tables (pasted into ``benchmarks/RESULTS.m
     Target: p95 < 10 ms.
 ``house``
     ``demos/house.grammar`` (two storeys, typed and furnished) built without physics on
-    ``--house-seeds`` seeds, ``--repeats`` times each, writing the default files.
+    ``--house-seeds`` seeds, ``--repeats`` times each, writing the files of ``cga build``
+    (glb, scene JSON, plans) or ``--formats``.
     Target: median < 0.5 s.
 
     python benchmarks/bench_pipeline.py [--repeats 5] [--parts demos,layout,house]
                                         [--layout-seeds 500] [--house-seeds 10] [--no-physics]
+                                        [--formats glb,json,plan]
 
 Timings are wall clock (``time.perf_counter``) unless marked CPU
 (``time.process_time``); on a shared machine the CPU figures are the steadier ones.
@@ -82,12 +84,12 @@ def _verdict(value: float, target: float) -> str:
     return "met" if value < target else "NOT met"
 
 
-def _timed_build(grammar: Path, seed: int, out_dir: Path, physics: bool
-                 ) -> tuple[dict[str, float], float, float]:
-    """(scene timings, wall seconds, CPU seconds) of one build."""
+def _timed_build(grammar: Path, seed: int, out_dir: Path, physics: bool,
+                 formats: Sequence[str] = DEFAULT_FORMATS) -> tuple[dict[str, float], float, float]:
+    """(scene timings, wall seconds, CPU seconds) of one build writing ``formats``."""
     wall, cpu = time.perf_counter(), time.process_time()
-    scene = build(grammar, seed=seed, out_dir=out_dir, formats=DEFAULT_FORMATS,
-                  physics=physics, quiet=True)
+    scene = build(grammar, seed=seed, out_dir=out_dir, formats=formats, physics=physics,
+                  quiet=True)
     return dict(scene.timings), time.perf_counter() - wall, time.process_time() - cpu
 
 
@@ -157,20 +159,20 @@ def bench_layout(repeats: int, seeds: int) -> None:
           f"({_ms(median_p95)} ms wall, median sweep)\n")
 
 
-def bench_house(repeats: int, seeds: int, work: Path) -> None:
-    _timed_build(HOUSE, 0, work / "house-warmup", physics=False)
+def bench_house(repeats: int, seeds: int, formats: Sequence[str], work: Path) -> None:
+    _timed_build(HOUSE, 0, work / "house-warmup", False, formats)
     walls: list[float] = []
     cpus: list[float] = []
     stages: dict[str, list[float]] = {}
     for _ in range(repeats):
         for seed in range(seeds):
-            timings, wall, cpu = _timed_build(HOUSE, seed, work / "house", physics=False)
+            timings, wall, cpu = _timed_build(HOUSE, seed, work / "house", False, formats)
             walls.append(wall)
             cpus.append(cpu)
             for stage, seconds in timings.items():
                 stages.setdefault(stage, []).append(seconds)
     print(f"## Furnished two-storey house end to end, no physics ({seeds} seeds x {repeats} "
-          f"repeats, files: {', '.join(DEFAULT_FORMATS)}; ms)\n")
+          f"repeats, files: {', '.join(formats)}; ms)\n")
     print("| figure | min | median | p95 |")
     print("|---|---:|---:|---:|")
     for label, values in (("total (wall)", walls), ("total (CPU)", cpus),
@@ -182,10 +184,14 @@ def bench_house(repeats: int, seeds: int, work: Path) -> None:
           f"({median:.3f} s median wall, {statistics.median(cpus):.3f} s median CPU)\n")
 
 
+def _format_list(text: str) -> list[str]:
+    return [f.strip() for f in text.split(",") if f.strip()]
+
+
 PARTS: dict[str, Callable[[argparse.Namespace, Path], None]] = {
     "demos": lambda args, work: bench_demos(args.repeats, not args.no_physics, work),
     "layout": lambda args, work: bench_layout(args.repeats, args.layout_seeds),
-    "house": lambda args, work: bench_house(args.repeats, args.house_seeds, work),
+    "house": lambda args, work: bench_house(args.repeats, args.house_seeds, args.formats, work),
 }
 
 
@@ -196,6 +202,9 @@ def main() -> None:
                         help=f"comma-separated parts to run ({', '.join(PARTS)})")
     parser.add_argument("--layout-seeds", type=int, default=500)
     parser.add_argument("--house-seeds", type=int, default=10)
+    parser.add_argument("--formats", type=_format_list, default=list(DEFAULT_FORMATS),
+                        help="files the house part writes, comma-separated "
+                             f"(default: {','.join(DEFAULT_FORMATS)}, as cga build)")
     parser.add_argument("--no-physics", action="store_true",
                         help="build the demos without the physics and navigability checks")
     args = parser.parse_args()
