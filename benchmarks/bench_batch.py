@@ -53,6 +53,21 @@ def one_run(grammar: Path, count: int, jobs: int, physics: bool, formats: list[s
         return report, _cpu_seconds() - cpu
 
 
+def _failures(report: BatchReport) -> str:
+    """Invalid houses counted by failed check, with their seeds (first ten)."""
+    failed: dict[str, list[int]] = {}
+    for record in report.records:
+        if record.error is not None:
+            failed.setdefault("error", []).append(record.seed)
+        for check, passed in sorted(record.checks.items()):
+            if not passed:
+                failed.setdefault(check, []).append(record.seed)
+    if not failed:
+        return "none"
+    return "; ".join(f"{check} {len(seeds)} (seeds {', '.join(map(str, seeds[:10]))}"
+                     f"{', ...' if len(seeds) > 10 else ''})" for check, seeds in failed.items())
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("-n", "--count", type=int, default=100,
@@ -76,6 +91,7 @@ def main() -> None:
           "| mean s | p95 s | errors |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     rates: dict[str, list[float]] = {}
+    failures: list[str] = []
     for mode in modes:
         count = args.count if mode == "no-physics" else args.physics_n
         for _ in range(args.repeats):
@@ -87,6 +103,11 @@ def main() -> None:
                   f"{report.built_now / (cpu / args.jobs):.2f} | {data['validity_rate']:.1%} | "
                   f"{data['placement_rate']:.1%} | {report.mean_seconds:.3f} | "
                   f"{report.p95_seconds:.3f} | {data['errors']} |")
+            failures.append(f"{mode}, {report.count} houses: {_failures(report)}")
+    print()
+    print("Invalid houses by failed check:")
+    for line in failures:
+        print(f"- {line}")
     print()
     for mode, values in rates.items():
         line = (f"{mode}: houses/s min {min(values):.2f}, median {statistics.median(values):.2f} "
