@@ -1,9 +1,10 @@
-"""Triangle meshes as manifold3d solids, for exact clipping and projection in the checks.
+"""Triangle meshes as manifold3d solids, for exact clipping, projection and cutting.
 
 The occupancy grid projects the slice of each mesh that lies in the robot's height band
-(:meth:`manifold3d.Manifold.project`), and the V-HACD cache clips convex hulls back to the
-mesh they approximate. Both need a watertight solid; a mesh that is not one (an open
-surface, a user model with holes) gives ``None`` and the caller falls back on its hull.
+(:meth:`manifold3d.Manifold.project`), the V-HACD cache clips convex hulls back to the
+mesh they approximate, and the physics check cuts the building's structure into convex
+pieces (:func:`convex_pieces`). All need a watertight solid; a mesh that is not one (an
+open surface, a user model with holes) gives ``None`` and the caller falls back.
 """
 
 from __future__ import annotations
@@ -12,7 +13,16 @@ import manifold3d
 import numpy as np
 import trimesh
 
-__all__ = ["as_manifold", "as_trimesh"]
+__all__ = ["as_manifold", "as_trimesh", "convex_pieces"]
+
+_CONVEX_TOLERANCE = 1e-6
+"""A piece is convex when its volume is within this fraction of its hull's."""
+
+_MIN_VOLUME = 1e-9
+"""m³: pieces smaller than this are slivers of rounding (manifold3d stores float32)."""
+
+_MAX_PIECES = 256
+"""Cutting stops (and :func:`convex_pieces` gives up) beyond this many pieces."""
 
 
 def as_manifold(mesh: trimesh.Trimesh) -> manifold3d.Manifold | None:
@@ -32,3 +42,48 @@ def as_trimesh(solid: manifold3d.Manifold) -> trimesh.Trimesh:
     out = solid.to_mesh()
     return trimesh.Trimesh(vertices=np.asarray(out.vert_properties[:, :3], dtype=float),
                            faces=np.asarray(out.tri_verts, dtype=np.int64), process=False)
+
+
+def convex_pieces(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh] | None:
+    """Cut a solid into convex pieces with axis-aligned planes through its vertices.
+
+    A building's structure is rectilinear: a wall is a box with rectangular openings, a
+    slab a prism over a rectilinear footprint. Cutting such a solid with the planes
+    ``x``, ``z`` and ``y`` = constant through its vertices leaves boxes. Returns the
+    pieces (one piece, the mesh itself, when it is already convex), or ``None`` when the
+    mesh is not a watertight solid or some piece is not convex (a slanted wall with an
+    opening), so the caller can use the mesh as it is.
+
+    Notes
+    -----
+    At most a few dozen cuts per wall; each is a manifold3d plane split.
+    """
+    solid = as_manifold(mesh)
+    if solid is None:
+        return None
+    if _is_convex(solid):
+        return [mesh]
+    vertices = np.asarray(solid.to_mesh().vert_properties[:, :3], dtype=float)
+    pieces = [solid]
+    for axis in (0, 2, 1):
+        normal = tuple(1.0 if k == axis else 0.0 for k in range(3))
+        for value in np.unique(vertices[:, axis]):
+            cut = []
+            for piece in pieces:
+                box = piece.bounding_box()
+                if box[axis] + 1e-9 < value < box[axis + 3] - 1e-9 and not _is_convex(piece):
+                    cut.extend(p for p in piece.split_by_plane(normal, float(value))
+                               if p.volume() > _MIN_VOLUME)
+                else:
+                    cut.append(piece)
+            pieces = cut
+            if len(pieces) > _MAX_PIECES:
+                return None
+    if not all(_is_convex(piece) for piece in pieces):
+        return None
+    return [as_trimesh(piece) for piece in pieces]
+
+
+def _is_convex(solid: manifold3d.Manifold) -> bool:
+    hull = solid.hull().volume()
+    return hull > 0 and solid.volume() >= hull * (1.0 - _CONVEX_TOLERANCE)

@@ -8,10 +8,15 @@ gravity act for a short while and measures how far each item moved and turned
 (DESIGN §9).
 
 Frame: the world frame is used as is (metres, y up) with gravity along −y, so positions
-in the report need no conversion. Structure (walls, slabs, ceilings) is static concave
-triangle meshes; each solid item is one rigid body whose collision shape is a compound of
-its convex parts (V-HACD pieces for models that are not made of convex parts, see
-:mod:`cga.checks.vhacd`), with the item's mass at the parts' volume centroid. Static
+in the report need no conversion. Structure (walls, slabs, ceilings) is static: each
+node is cut into convex pieces along axis-aligned planes through its vertices (a wall
+with openings becomes boxes), and kept as one concave triangle mesh when it does not cut
+into convex pieces. Boxes rather than triangle meshes, because Bullet's contacts between
+a convex part and the long thin triangles of a slab triangulated around T-junctions push
+sideways: standing on the slab as one mesh, a washbasin tipped over and wardrobes walked
+2–3 cm in 5 of 200 house seeds. Each solid item is one rigid body whose collision shape
+is a compound of its convex parts (V-HACD pieces for models that are not made of convex
+parts, see :mod:`cga.checks.vhacd`), with the item's mass at the parts' centroid. Static
 furniture (rugs, which may overlap anything, and door and window details, which sit in
 their openings) is not simulated.
 
@@ -43,6 +48,7 @@ import trimesh
 from cga.scene import Scene, SceneNode
 
 from ._bullet import direct_client, obj_text
+from ._solids import convex_pieces
 from .vhacd import convex_decomposition
 
 __all__ = [
@@ -87,17 +93,16 @@ _MARGIN = 0.001
 """m: Bullet's collision margin around every shape here (convex hulls of a compound,
 triangle meshes). A shape acts as if inflated by it, and pybullet's distances include it."""
 
-_SHRINK_UP = 2 * _MARGIN
-"""m: each item's convex parts are shrunk by this much on their top and bottom faces.
-With the margin added back, an item's underside lies 1 mm above its true one while the
-floor's surface lies 1 mm above the true floor, so an item touches the floor exactly.
-Unshrunk, every item would start 2 mm "deep" in the floor and be pushed up."""
+_SHRINK = 2 * _MARGIN
+"""m: each item's convex parts are shrunk by this much per face. With the margin added
+back, an item's surface lies 1 mm inside its true one while the structure's lies 1 mm
+outside, so an item standing on the floor or flush against a wall touches it exactly,
+and two items placed side by side keep a 2 mm gap. Unshrunk, every touching pair would
+start 2 mm "deep" in each other and the contact solver would push them apart."""
 
-_SHRINK_SIDE = 4 * _MARGIN
-"""m: the shrink of the parts' side faces. An item flush against a wall keeps a 2 mm gap
-(two items side by side, 6 mm): Bullet's contacts between a box and a large triangle
-whose internal edge crosses the contact patch push sideways, and a tall wardrobe standing
-flush against a wall was seen to rock and walk off it."""
+_INFLATION = {"item": _MARGIN - _SHRINK, "static": _MARGIN}
+"""How far each kind of body's collision surface lies outside its true surface (m); a
+reported distance minus both inflations is the true distance."""
 
 _OVERLAP_EPS = 1e-4
 """m: overlaps shallower than this (numerical noise of touching shapes) count as touching."""
@@ -276,9 +281,9 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
     Cost is dominated by the simulation: about (items × settled steps) convex-vs-mesh
     contact tests. Overlap is measured with ``getClosestPoints`` before any step, between
     each item and every body whose bounding box meets its own; the
-    collision margins pybullet adds around shapes (1 mm) and the few millimetres by which
-    item parts are shrunk are accounted for along each contact's normal, so an item
-    standing on the floor or flush against a wall has penetration 0.
+    collision margins pybullet adds around shapes (1 mm) and the 2 mm by which item parts
+    are shrunk are accounted for, so an item standing on the floor or flush against a
+    wall has penetration 0.
     """
     for label, value in (("settle_seconds", settle_seconds), ("timestep", timestep),
                          ("penetration_tol", penetration_tol), ("move_tol", move_tol),
@@ -348,18 +353,26 @@ class _World:
                                           deterministicOverlappingPairs=1,
                                           physicsClientId=self.client)
 
-    def add_static(self, node: SceneNode) -> int:
-        """A static concave triangle mesh for a structure node."""
-        mesh = node.mesh
-        shape = self.pb.createCollisionShape(
-            self.pb.GEOM_MESH, vertices=np.asarray(mesh.vertices, dtype=float).tolist(),
-            indices=np.asarray(mesh.faces, dtype=int).ravel().tolist(),
-            flags=self.pb.GEOM_FORCE_CONCAVE_TRIMESH, physicsClientId=self.client)
-        if shape < 0:
-            raise RuntimeError(f"pybullet rejected the mesh of {node.path}")
-        uid = self.pb.createMultiBody(0.0, shape, physicsClientId=self.client)
-        self.paths[uid], self.kinds[uid] = node.path, "static"
-        return uid
+    def add_static(self, node: SceneNode) -> None:
+        """Static bodies for a structure node: its convex pieces when it cuts into them
+        (:func:`convex_pieces`), else the node as one concave triangle mesh."""
+        pieces = convex_pieces(node.mesh)
+        if pieces is None:
+            mesh = node.mesh
+            shape = self.pb.createCollisionShape(
+                self.pb.GEOM_MESH, vertices=np.asarray(mesh.vertices, dtype=float).tolist(),
+                indices=np.asarray(mesh.faces, dtype=int).ravel().tolist(),
+                flags=self.pb.GEOM_FORCE_CONCAVE_TRIMESH, physicsClientId=self.client)
+            shapes = [shape]
+        else:
+            shapes = [self.pb.createCollisionShape(
+                self.pb.GEOM_MESH, vertices=np.asarray(piece.vertices, dtype=float).tolist(),
+                physicsClientId=self.client) for piece in pieces]
+        for shape in shapes:
+            if shape < 0:
+                raise RuntimeError(f"pybullet rejected the mesh of {node.path}")
+            uid = self.pb.createMultiBody(0.0, shape, physicsClientId=self.client)
+            self.paths[uid], self.kinds[uid] = node.path, "static"
 
     def add_item(self, node: SceneNode, cache_dir: Path | None) -> _Body:
         """A dynamic compound body for a furniture item, its origin at the parts' centroid."""
@@ -407,12 +420,13 @@ class _World:
             near = self.pb.getOverlappingObjects(lo, hi, physicsClientId=self.client) or []
             deepest, which = 0.0, None
             for other in sorted({uid for uid, _ in near if uid != body.uid}):
-                points = self.pb.getClosestPoints(body.uid, other, 2 * _SHRINK_SIDE,
+                points = self.pb.getClosestPoints(body.uid, other, 2 * _SHRINK,
                                                   physicsClientId=self.client)
                 if not points:
                     continue
-                depth = max(-(p[8] + _inflation("item", p[7]) + _inflation(self.kinds[other], p[7]))
-                            for p in points)
+                true_distance = (min(p[8] for p in points) + _INFLATION["item"]
+                                 + _INFLATION[self.kinds[other]])
+                depth = -true_distance
                 if depth > max(deepest, _OVERLAP_EPS):
                     deepest, which = depth, self.paths[other]
             out.append((deepest, which))
@@ -474,24 +488,13 @@ def _support_gap(parts: Sequence[trimesh.Trimesh], centroid: np.ndarray) -> floa
     return float(hull.distance(shapely.Point(centroid[0], centroid[2])))
 
 
-def _inflation(kind: str, normal: Sequence[float]) -> float:
-    """How far a body's collision surface lies outside its true surface (m) where a
-    contact has this normal: the margin, less an item's shrink in that direction. A
-    reported distance minus the inflations of both bodies is the true distance."""
-    if kind == "static":
-        return _MARGIN
-    up = min(1.0, abs(float(normal[1])))
-    return _MARGIN - (up * _SHRINK_UP + (1.0 - up) * _SHRINK_SIDE)
-
-
 def _shrunk(part: trimesh.Trimesh) -> trimesh.Trimesh:
-    """The part scaled about its box centre so its top and bottom faces move in by
-    :data:`_SHRINK_UP` and its side faces by :data:`_SHRINK_SIDE` (exact for box parts;
-    a part thinner than four times that keeps at least half its size)."""
+    """The part scaled about its box centre so each axis-aligned face moves in by
+    :data:`_SHRINK` (exact for box parts; a part thinner than four times that keeps at
+    least half its size)."""
     lo, hi = part.bounds
     centre, extent = (lo + hi) / 2, hi - lo
-    shrink = np.array([_SHRINK_SIDE, _SHRINK_UP, _SHRINK_SIDE])
-    scale = np.maximum(extent - 2 * shrink, extent / 2) / np.maximum(extent, 1e-12)
+    scale = np.maximum(extent - 2 * _SHRINK, extent / 2) / np.maximum(extent, 1e-12)
     return trimesh.Trimesh(vertices=(np.asarray(part.vertices) - centre) * scale + centre,
                            faces=part.faces, process=False)
 

@@ -196,9 +196,9 @@ def test_same_scene_gives_the_same_report(kit, room):
 
 def test_wardrobe_on_a_finely_cut_slab_against_a_wall_rests(kit):
     """Regression (house seed 71): a slab triangulated as make_floor leaves it (T-junction
-    vertices on its outline, long thin triangles) and a wardrobe flush against a wall. The
-    slab's internal edges under the wardrobe push it sideways; against the wall that
-    became a rocking walk of 2 cm until item sides were kept clear of walls."""
+    vertices on its outline, long thin triangles) and a wardrobe flush against a wall.
+    Loaded as one triangle mesh, the slab's contacts under the wardrobe pushed sideways
+    and it walked 2 cm off the wall; the structure is now cut into convex pieces."""
     outline = [(0.0, 0.0), (4.59, 0.0), (7.7, 0.0), (14.0, 0.0), (14.0, 5.16), (14.0, 10.0),
                (7.7, 10.0), (0.0, 10.0), (0.0, 6.29)]
     vertices = [(x, 0.0, z) for x, z in outline] + [(x, 0.2, z) for x, z in outline]
