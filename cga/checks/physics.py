@@ -274,7 +274,7 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
     Raises
     ------
     ValueError
-        A threshold or time is not positive.
+        A threshold or time is not positive, or a furniture node has no geometry.
 
     Notes
     -----
@@ -296,6 +296,9 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
         nodes = scene_nodes(scene)
     structure = [n for n in structure_nodes(nodes) if len(n.mesh.faces)]
     items = item_nodes(nodes)
+    for node in items:
+        if len(node.mesh.faces) == 0:
+            raise ValueError(f"furniture node {node.path} has no geometry")
     ignored = tuple(n.path for n in nodes if n.kind == "furniture" and n.static)
     with direct_client() as (pb, client), tempfile.TemporaryDirectory(prefix="cga-physics-") as tmp:
         world = _World(pb, client, Path(tmp), timestep)
@@ -474,8 +477,6 @@ def _convex_parts(node: SceneNode, cache_dir: Path | None) -> list[trimesh.Trime
     parts = [p for p in node.parts if len(p.faces)]
     if parts and node.extras.get("convex_parts", True):
         return parts
-    if len(node.mesh.faces) == 0:
-        raise ValueError(f"furniture node {node.path} has no geometry")
     return list(convex_decomposition(node.mesh, cache=cache_dir))
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from cga.checks import check_physics
+from cga.checks import check_physics, physics
 from cga.scene import SceneNode
 
 pytestmark = pytest.mark.physics
@@ -223,3 +223,34 @@ def test_wardrobe_on_a_finely_cut_slab_against_a_wall_rests(kit):
     report = check_physics(kit.scene_of(), nodes)
     assert report.passed, report.summary()
     assert report.items[0].displacement < 0.002
+
+
+def _connected_clients() -> list[int]:
+    from cga.checks._bullet import pybullet
+
+    pb = pybullet()
+    return [k for k in range(32) if pb.isConnected(physicsClientId=k)]
+
+
+def test_server_is_closed_after_a_check_and_after_a_failure(kit, room, monkeypatch):
+    plan, nodes = room
+    table = kit.box_item("table", (1, 0.7, 1), (2, 2))
+    before = _connected_clients()
+    check_physics(kit.scene_of(plan), nodes + [table])
+    assert _connected_clients() == before
+
+    def broken(*_args):
+        raise RuntimeError("simulation failed")
+
+    monkeypatch.setattr(physics._World, "settle", broken)
+    with pytest.raises(RuntimeError, match="simulation failed"):
+        check_physics(kit.scene_of(plan), nodes + [table])
+    assert _connected_clients() == before
+
+
+def test_item_without_geometry_is_rejected(kit, room):
+    plan, nodes = room
+    empty = SceneNode("floor0/room0/furniture/ghost", "furniture", trimesh.Trimesh(),
+                      extras={"name": "ghost"}, static=False)
+    with pytest.raises(ValueError, match="ghost has no geometry"):
+        check_physics(kit.scene_of(plan), nodes + [empty])
