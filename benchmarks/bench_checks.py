@@ -15,7 +15,7 @@ import statistics
 import time
 from pathlib import Path
 
-from cga.build import build
+from cga.pipeline import build
 from cga.checks import check_floor_navigability, check_physics
 from cga.meshing import scene_nodes
 

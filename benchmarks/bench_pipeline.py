@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 from shapely.geometry import box
 
-from cga.build import build
+from cga.pipeline import build
 from cga.errors import NoSolutionError
 from cga.export import DEFAULT_FORMATS
 from cga.operations.base import OperationContext

@@ -16,9 +16,9 @@ if (_checkout_root / "operations" / "__init__.py").is_file() and not (
 __version__ = "0.1.0"
 
 # The public Python API. Names are imported on first use, so `import cga` (and the `cga`
-# command's startup) does not load shapely, trimesh or pybullet. The pipeline itself is
-# `cga.build.build` (a module attribute of the same name cannot also be the function).
+# command's startup) does not load shapely, trimesh or pybullet.
 _PUBLIC = {
+    "build": "cga.pipeline",
     "parse": "cga.parser",
     "parse_file": "cga.parser",
     "derive": "cga.evaluator",
@@ -29,6 +29,12 @@ _PUBLIC = {
     "scene_nodes": "cga.meshing",
     "Scene": "cga.scene",
     "SceneNode": "cga.scene",
+    "check_physics": "cga.checks",
+    "check_navigability": "cga.checks",
+    "occupancy_grid": "cga.checks",
+    "floor_from_rectangles": "cga.authoring",
+    "type_floor": "cga.authoring",
+    "run_batch": "cga.batch",
 }
 
 __all__ = ["__version__", *_PUBLIC]

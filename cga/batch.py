@@ -154,7 +154,7 @@ def _summarise(scene: Any, seconds: float, seed: int) -> BatchRecord:
 
 def _build_one(grammar: str, seed: int, out_dir: str, build_options: dict[str, Any]) -> BatchRecord:
     """Worker: build one seed into a temporary folder, then move it into place."""
-    from .build import build
+    from .pipeline import build
 
     final = Path(out_dir) / seed_folder(seed)
     staging = Path(out_dir) / f"{_TMP_PREFIX}{seed_folder(seed)}"
@@ -184,7 +184,7 @@ def run_batch(grammar: str | Path, *, count: int, out_dir: str | Path, jobs: int
     count, seed_start : build seeds ``seed_start .. seed_start + count - 1``.
     out_dir : folder for the per-seed folders and ``manifest.jsonl``.
     jobs : worker processes (1 builds in this process).
-    build_options : keyword arguments passed to :func:`cga.build.build` (e.g.
+    build_options : keyword arguments passed to :func:`cga.pipeline.build` (e.g.
         ``physics=False``).
     on_progress : called with (done, total) after each finished build.
 

@@ -55,7 +55,7 @@ def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
 def _run_build(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from .build import build, default_out_dir
+    from .pipeline import build, default_out_dir
     from .export import DEFAULT_FORMATS
 
     out_dir = Path(args.out) if args.out else default_out_dir(Path(args.grammar).stem)

@@ -1,6 +1,6 @@
 """The Scene: one object with everything a consumer of a build needs.
 
-The evaluator derives a shape tree; :func:`cga.build.build` collects its terminal shapes
+The evaluator derives a shape tree; :func:`cga.pipeline.build` collects its terminal shapes
 into a Scene: the floor plans (rooms, walls, doors, windows, furniture) and any other
 terminal geometry (masses and faces of grammars that do not make floors). Exporters and
 checks read a Scene and nothing upstream of it.

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .build import STAGES
+from .pipeline import STAGES
 from .model import FloorPlan
 from .scene import Scene
 

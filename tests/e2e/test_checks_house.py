@@ -25,7 +25,7 @@ import pytest
 import shapely
 from shapely.geometry import Point, Polygon
 
-from cga.build import build
+from cga.pipeline import build
 from cga.model import OUTSIDE, FloorPlan
 
 pytestmark = [pytest.mark.slow, pytest.mark.physics]

@@ -23,7 +23,7 @@ import trimesh
 from shapely import union_all
 from shapely.geometry import Polygon, box
 
-from cga.build import build
+from cga.pipeline import build
 from cga.export import DEFAULT_FORMATS
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -19,7 +19,7 @@ import trimesh
 from PIL import Image
 from pybullet_utils.bullet_client import BulletClient
 
-from cga.build import build
+from cga.pipeline import build
 from cga.export.scene_json import load_schema
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from cga.build import build
+from cga.pipeline import build
 
 DEMOS = sorted((Path(__file__).resolve().parents[2] / "demos").glob("*.grammar"))
 VALIDATOR = os.environ.get("CGA_GLTF_VALIDATOR_DIR")

@@ -8,7 +8,7 @@ import pytest
 from shapely.geometry import Polygon
 
 from cga import build as build_module
-from cga.build import build
+from cga.pipeline import build
 from cga.cli import main
 from cga.errors import (DerivationError, GrammarSyntaxError, NoSolutionError,
                         ResourceNotFoundError, UsageError)
