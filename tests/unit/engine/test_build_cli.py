@@ -7,7 +7,7 @@ import json
 import pytest
 from shapely.geometry import Polygon
 
-from cga import build as build_module
+from cga import pipeline as build_module
 from cga.pipeline import build
 from cga.cli import main
 from cga.errors import (DerivationError, GrammarSyntaxError, NoSolutionError,
