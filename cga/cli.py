@@ -43,7 +43,7 @@ def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--robot-radius", type=float, default=0.25, metavar="R",
                         help="robot radius in metres for the navigability check (default 0.25)")
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
-                        help="extra outputs, comma separated: obj,urdf,sdf,map")
+                        help="extra outputs, comma separated: obj,urdf,sdf,map,view")
     parser.add_argument("--max-depth", type=int, default=64, metavar="N",
                         help="derivation depth limit (default 64)")
     output = parser.add_mutually_exclusive_group()
@@ -110,7 +110,7 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-physics", action="store_true",
                         help="skip the physics and navigability checks")
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
-                        help="extra outputs per seed, comma separated: obj,urdf,sdf,map")
+                        help="extra outputs per seed, comma separated: obj,urdf,sdf,map,view")
     output = parser.add_mutually_exclusive_group()
     output.add_argument("--quiet", action="store_true", help="print nothing but errors")
     output.add_argument("--json", action="store_true",
