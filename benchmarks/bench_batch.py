@@ -1,7 +1,7 @@
 """Batch throughput: ``run_batch`` on the house demo, without and with the checks.
 
 Each run builds ``-n`` fresh seeds into a new temporary folder (nothing to resume) with
-the options ``cga batch`` uses (the default files: glb, scene JSON, plans; ``--formats``
+the options ``cga batch`` uses (the default files: glb and scene JSON; ``--formats``
 changes them), in ``--jobs`` worker processes. The table gives, per run, the wall time, houses per second and the
 batch report (validity and furniture placement rates, mean and p95 seconds per house);
 with ``--repeats`` > 1 the minimum and median houses/s follow. The machine's other load
@@ -26,7 +26,7 @@ import tempfile
 from pathlib import Path
 
 from cga.batch import BatchReport, run_batch
-from cga.export import DEFAULT_FORMATS
+from cga.export import BATCH_FORMATS
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGET_HOUSES_PER_SECOND = 5.0
@@ -78,7 +78,7 @@ def main() -> None:
     parser.add_argument("--modes", default=",".join(MODES),
                         help=f"comma-separated: {', '.join(MODES)}")
     parser.add_argument("--grammar", type=Path, default=ROOT / "demos" / "house.grammar")
-    parser.add_argument("--formats", default=",".join(DEFAULT_FORMATS),
+    parser.add_argument("--formats", default=",".join(BATCH_FORMATS),
                         help="files per house, comma-separated (default: as cga batch)")
     args = parser.parse_args()
     modes = [m.strip() for m in args.modes.split(",") if m.strip()]

@@ -110,7 +110,8 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-physics", action="store_true",
                         help="skip the physics and navigability checks")
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
-                        help="extra outputs per seed, comma separated: obj,urdf,sdf,map,view")
+                        help="extra outputs per seed besides glb and scene JSON, comma "
+                             "separated: plan,obj,urdf,sdf,map,view")
     output = parser.add_mutually_exclusive_group()
     output.add_argument("--quiet", action="store_true", help="print nothing but errors")
     output.add_argument("--json", action="store_true",
@@ -122,11 +123,11 @@ def _run_batch(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from .batch import run_batch
-    from .export import DEFAULT_FORMATS
+    from .export import BATCH_FORMATS
 
     out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.grammar).stem}-batch"
     options = {"physics": not args.no_physics,
-               "formats": list(dict.fromkeys([*DEFAULT_FORMATS, *args.export]))}
+               "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export]))}
     kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
                   build_options=options)
     if args.quiet or args.json:

@@ -23,7 +23,7 @@ from .sdf import export_sdf
 from .urdf import export_urdf
 from .view import export_view
 
-__all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS"]
+__all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS", "BATCH_FORMATS"]
 
 Exporter = Callable[[Scene, Sequence[SceneNode], Path, str], list[Path]]
 """``export_x(scene, nodes, out_dir, name) -> written paths``."""
@@ -42,3 +42,7 @@ EXPORTERS: dict[str, Exporter] = {
 
 DEFAULT_FORMATS: tuple[str, ...] = ("glb", "json", "plan")
 """What ``cga build`` writes without ``--export``."""
+
+BATCH_FORMATS: tuple[str, ...] = ("glb", "json")
+"""What ``cga batch`` writes per seed without ``--export``: a dataset needs the model and
+its labels; plan pictures (the slowest default output) are one ``--export plan`` away."""
