@@ -14,13 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError
+from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError, UsageError
 from cga.model import FloorPlan
 from cga.resources import resolve_resource
 from cga.shape import Shape
 
 from .base import Child, Operation, OperationContext, Param
 from .furniture.library import ModelLibrary, default_library
+from .furniture.passage import PASSAGE_WIDTH
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
 from .furniture.solver import furnish_plan
 
@@ -51,6 +52,12 @@ class AddFurniture(Operation):
         random starts, keeping the layout that places the most items (stopping early
         after :data:`~cga.operations.furniture.solver.PATIENCE` attempts in a row that
         place no more).
+    passage_width (keyword):
+        Width of the passage every solid item must leave between the doors of its room,
+        in grammar units; default 0.6 m (a robot of 0.5 m diameter plus a margin), 0
+        switches the rule off. An item that would cut a door off, or wall off more than
+        15 % of the floor a robot can reach, stands elsewhere or is left out
+        (:mod:`cga.operations.furniture.passage`).
 
     Every item that cannot be placed is left out with a warning naming the item, the
     room and the reason; the warnings travel on the floor plan's ``diagnostics``.
@@ -68,6 +75,8 @@ class AddFurniture(Operation):
               doc="rounds of separation steering of the start positions"),
         Param("clearanceTries", "count", default=20,
               doc="solves per room from new random starts while items are left out"),
+        Param("passage_width", "length", default=PASSAGE_WIDTH, keyword_only=True,
+              doc="free passage kept between each room's doors (default 0.6 m; 0: none)"),
     )
     doc = ("add_furniture(rules.csv, wallWidth>windowWidth>windowHigh, doorWidth, doorHeight, "
            "steeringIterations, clearanceTries): furnish every typed room of the floor")
@@ -82,14 +91,20 @@ class AddFurniture(Operation):
             raise DerivationError(
                 "add_furniture needs typed rooms, but no room of this floor has a type",
                 ctx.span, hint="apply type_rooms(...) before add_furniture")
+        if args["passage_width"] < 0:
+            raise DerivationError(
+                f"passage_width must not be negative, got {args['passage_width'] / ctx.units:g}",
+                ctx.span, hint="use 0 to switch the passage rule off")
         path = Path(ctx.resolve(args["rules"], "rules"))
         furnished = _furnish(plan, _rules(ctx, path), _library(ctx), ctx.rng, ctx.units,
-                             args["steeringIterations"], args["clearanceTries"])
+                             args["steeringIterations"], args["clearanceTries"],
+                             args["passage_width"])
         return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=furnished)]
 
 
 def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: float = 1.0,
                   steering_iterations: int = 10, clearance_tries: int = 20,
+                  passage_width: float = PASSAGE_WIDTH,
                   library: ModelLibrary | None = None) -> FloorPlan:
     """Furnish a typed floor as ``add_furniture`` does in a grammar (for rule authors).
 
@@ -106,6 +121,8 @@ def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: f
         Metres per unit of the table's distances.
     steering_iterations, clearance_tries:
         As the operation's ``steeringIterations`` and ``clearanceTries``.
+    passage_width:
+        As the operation's ``passage_width``, in metres (not scaled by ``units``).
     library:
         The models; default: the shipped ones.
 
@@ -119,19 +136,24 @@ def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: f
     ------
     ResourceNotFoundError, RuleTableError
         The table or one of its models does not exist, or the table is malformed.
+    UsageError
+        ``passage_width`` is negative.
     """
+    if passage_width < 0:
+        raise UsageError(f"passage_width must not be negative, got {passage_width:g}")
     table = load_furniture_rules(resolve_resource(rules, "rules"))
     return _furnish(plan, table, library or default_library(), np.random.default_rng(seed),
-                    units, steering_iterations, clearance_tries)
+                    units, steering_iterations, clearance_tries, passage_width)
 
 
 def _furnish(plan: FloorPlan, rules: FurnitureRules, library: ModelLibrary,
              rng: np.random.Generator, units: float, steering_iterations: int,
-             clearance_tries: int) -> FloorPlan:
+             clearance_tries: int, passage_width: float) -> FloorPlan:
     models = _models(rules, library)
     furniture, diagnostics = furnish_plan(plan, rules.scaled(units), models, rng,
                                           steering_iterations=steering_iterations,
-                                          attempts=clearance_tries)
+                                          attempts=clearance_tries,
+                                          passage_width=passage_width)
     for item in furniture:
         if item.is_detail:
             library.get(item.model)

@@ -12,7 +12,9 @@ Three kinds of plan regions decide where furniture may stand (DESIGN §8, thesis
   to reach the handle;
 * a window's **strip**: the band in front of the window's span. An item that could cover
   a window (``canCloseWindow``) must stay out of the band as deep as the item itself plus
-  its front clearance.
+  its front clearance;
+* a door's strip, the same band in front of a door: its shallow part is where a robot
+  stands right after coming through the door (:mod:`.passage`).
 
 Items turn in quarter turns only, so every envelope box is axis-aligned; boxes are
 returned as ``(minx, minz, maxx, maxz)`` relative to the item's centre.
@@ -35,8 +37,9 @@ __all__ = [
     "half_extents",
     "Keepout",
     "door_keepouts",
-    "WindowStrip",
+    "OpeningStrip",
     "window_strips",
+    "door_strips",
     "wall_side_normal",
     "face_offset",
     "quarter_turn_towards",
@@ -180,10 +183,10 @@ def door_keepouts(plan: FloorPlan, room_id: int) -> list[Keepout]:
 
 
 @dataclass(frozen=True)
-class WindowStrip:
-    """A window seen from its room: ``start`` is one end of its span on the wall line,
-    ``along`` runs over the span (length ``width``), ``normal`` points into the room and
-    ``face`` is the wall's thickness on the room side."""
+class OpeningStrip:
+    """A door or window seen from one of its rooms: ``start`` is one end of its span on
+    the wall line, ``along`` runs over the span (length ``width``), ``normal`` points into
+    the room and ``face`` is the wall's thickness on the room side."""
 
     label: str
     start: tuple[float, float]
@@ -193,29 +196,35 @@ class WindowStrip:
     face: float
 
     def zone(self, depth: float) -> Polygon:
-        """The band in front of the window, ``depth`` metres deep from the wall face."""
+        """The band in front of the opening, ``depth`` metres deep from the wall face."""
         return _rect(np.asarray(self.start), np.asarray(self.along) * self.width,
                      np.asarray(self.normal) * (self.face + depth))
 
 
-def window_strips(plan: FloorPlan, room_id: int) -> list[WindowStrip]:
-    """The windows of ``room_id`` as :class:`WindowStrip` records."""
-    strips = []
-    for window in plan.windows:
-        if window.room != room_id:
-            continue
-        wall = plan.wall(window.wall)
-        normal = wall_side_normal(plan, wall, window.position, room_id)
-        start = np.asarray(window.position) - wall.direction * window.width / 2
-        strips.append(WindowStrip(
-            label=f"window {window.id}",
-            start=(float(start[0]), float(start[1])),
-            along=(float(wall.direction[0]), float(wall.direction[1])),
-            normal=(float(normal[0]), float(normal[1])),
-            width=window.width,
-            face=face_offset(plan, room_id, window.position),
-        ))
-    return strips
+def _strip(plan: FloorPlan, label: str, wall: Wall, position: tuple[float, float],
+           width: float, room_id: int) -> OpeningStrip:
+    normal = wall_side_normal(plan, wall, position, room_id)
+    start = np.asarray(position) - wall.direction * width / 2
+    return OpeningStrip(
+        label=label,
+        start=(float(start[0]), float(start[1])),
+        along=(float(wall.direction[0]), float(wall.direction[1])),
+        normal=(float(normal[0]), float(normal[1])),
+        width=width,
+        face=face_offset(plan, room_id, position),
+    )
+
+
+def window_strips(plan: FloorPlan, room_id: int) -> list[OpeningStrip]:
+    """The windows of ``room_id`` as :class:`OpeningStrip` records."""
+    return [_strip(plan, f"window {w.id}", plan.wall(w.wall), w.position, w.width, room_id)
+            for w in plan.windows if w.room == room_id]
+
+
+def door_strips(plan: FloorPlan, room_id: int) -> list[OpeningStrip]:
+    """The doors of ``room_id`` seen from that room, as :class:`OpeningStrip` records."""
+    return [_strip(plan, f"door {d.id}", plan.wall(d.wall), d.position, d.width, room_id)
+            for d in plan.doors if room_id in d.rooms]
 
 
 _FRONTS = np.array([front_vector(r) for r in range(4)])

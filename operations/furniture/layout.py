@@ -18,7 +18,11 @@ What blocks what (DESIGN §8):
   children (chairs stand in the table's clearance, the coffee table in the sofa's);
 * door keep-out zones block bodies; window strips block the bodies of ``canCloseWindow``
   items;
-* non-colliding items (rugs) block nothing and are blocked only by the walls.
+* non-colliding items (rugs) block nothing and are blocked only by the walls;
+* with a :class:`~.passage.Passage`, a solid item that would cut a door off from the
+  others, or wall off a pocket of the room, is blocked too. That test runs last, only for
+  a pose nothing else blocks, and :meth:`Layout.free_intervals` leaves it out (callers
+  test the positions they pick with :meth:`Layout.conflicts`).
 
 Touching is allowed: boxes are shrunk by :data:`EPS` before testing, so two items may
 share an edge and a wall item may stand flush against its wall.
@@ -32,9 +36,10 @@ from functools import lru_cache
 import numpy as np
 import shapely
 from shapely import STRtree
-from shapely.geometry import Polygon, box
+from shapely.geometry import Polygon
 
-from .clearance import Box, EnvelopePart, Keepout, WindowStrip, envelope
+from .clearance import Box, EnvelopePart, Keepout, OpeningStrip, envelope
+from .passage import Passage
 from .rules import FurnitureRule
 
 __all__ = ["EPS", "ItemSpec", "Pose", "Conflict", "Layout", "nearest_in"]
@@ -95,7 +100,9 @@ class Pose:
 @dataclass(frozen=True)
 class Conflict:
     """Part ``part`` of an item is blocked by ``blocker`` (an item name or a label) of
-    kind ``"wall"``, ``"body"``, ``"clearance"``, ``"door"`` or ``"window"``."""
+    kind ``"wall"``, ``"body"``, ``"clearance"``, ``"door"`` or ``"window"``; or the item
+    breaks the passage rule: kind ``"passage"`` (``blocker`` names the door it would cut
+    off) or ``"pocket"`` (``blocker`` is the share of the floor it would wall off)."""
 
     part: str
     kind: str
@@ -112,6 +119,8 @@ class Conflict:
             "clearance": f"stands in the clearance of {self.blocker}",
             "door": f"blocks {self.blocker}",
             "window": f"covers {self.blocker}",
+            "passage": f"would block the passage to {self.blocker}",
+            "pocket": f"would wall off {self.blocker} of the free floor from the doors",
         }[self.kind]
 
 
@@ -137,6 +146,12 @@ def _part_boxes(parts: tuple[EnvelopePart, ...], x: float, z: float) -> np.ndarr
     """The parts placed at ``(x, z)`` as shapely boxes shrunk by :data:`EPS`."""
     b = np.array([p.box for p in parts]) + np.array([x + EPS, z + EPS, x - EPS, z - EPS])
     return shapely.box(b[:, 0], b[:, 1], b[:, 2], b[:, 3])
+
+
+def _footprint(parts: tuple[EnvelopePart, ...], pose: Pose) -> Box:
+    """The body box of ``parts`` placed at ``pose``, exact."""
+    b = parts[0].box
+    return (pose.x + b[0], pose.z + b[1], pose.x + b[2], pose.z + b[3])
 
 
 def _outside_pieces(interior: Polygon, margin: float = 1.0) -> list[Polygon]:
@@ -171,18 +186,22 @@ class Layout:
         Door keep-out zones in this room.
     windows:
         The room's windows.
+    passage:
+        The room's passage rule; None: none.
     """
 
     def __init__(self, interior: Polygon, keepouts: list[Keepout] = (),
-                 windows: list[WindowStrip] = ()):
+                 windows: list[OpeningStrip] = (), passage: Passage | None = None):
         self.interior = interior
         self._static = [_Entry("wall", "a wall", piece, _rectangle(piece))
                         for piece in _outside_pieces(interior)]
         self._static += [_Entry("door", k.label, k.polygon, _rectangle(k.polygon))
                          for k in keepouts]
         self.windows = tuple(windows)
+        self.passage = passage if passage is not None and passage.active else None
         self.placed: dict[str, tuple[ItemSpec, Pose]] = {}
         self._item_entries: dict[str, list[_Entry]] = {}
+        self._footprints: dict[str, Box] = {}
         self._entries: list[_Entry] | None = None
         self._tree: STRtree | None = None
         self._window_zones: dict[str, list[tuple[str, Polygon]]] = {}
@@ -193,6 +212,7 @@ class Layout:
         self.placed[spec.name] = (spec, pose)
         if not spec.rule.non_collision:
             parts = spec.parts(pose.rotation)
+            self._footprints[spec.name] = _footprint(parts, pose)
             self._item_entries[spec.name] = [
                 _Entry("body" if part.is_body else "clearance", spec.name, geometry,
                        shapely.bounds(geometry).tolist())
@@ -203,6 +223,7 @@ class Layout:
         """Take an item out again; returns what it was."""
         self._tree = None
         self._item_entries.pop(name, None)
+        self._footprints.pop(name, None)
         return self.placed.pop(name)
 
     def pose(self, name: str) -> Pose | None:
@@ -266,6 +287,12 @@ class Layout:
                 found.append(Conflict("body", "window", label))
                 if first:
                     return found
+        if not found and self.passage is not None and not spec.rule.non_collision:
+            others = [b for name, b in self._footprints.items() if name != spec.name]
+            blockage = self.passage.blockage(others, _footprint(parts, pose))
+            if blockage is not None:
+                found.append(Conflict("body", "passage" if blockage.kind == "door" else
+                                      "pocket", blockage.what))
         return found
 
     def fits(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset()) -> bool:

@@ -20,7 +20,10 @@ instead of stepwise movement (:meth:`.layout.Layout.free_intervals`):
 * **non-colliding** items (rugs) lie in the middle of the room.
 
 A strategy either places the item in the :class:`~.layout.Layout` or returns the reason
-it could not, naming what blocked it.
+it could not, naming what blocked it. A pose that is free but breaks the passage rule
+(:mod:`.passage`) is passed over like a blocked one, and the next is tried; when nothing
+works and such a pose was seen, the reason says so too ("... ; where it fits, it would
+block the passage to door 3").
 """
 
 from __future__ import annotations
@@ -46,6 +49,7 @@ _FREE_SAMPLES = 8
 """Random extra start points a free-standing item tries when its own start is blocked."""
 _LOOKAHEAD = 16
 """Candidate poses a parent tries for a place where all its children fit."""
+_PASSAGE_KINDS = ("passage", "pocket")
 
 
 @dataclass(frozen=True)
@@ -181,12 +185,17 @@ class Placer:
                                           + ([s.rule.pair_with] if s.rule.pair_with else []))
                         for s in specs}
         self.sides: dict[str, tuple[str, int]] = {}  # around-child → (parent, side index)
+        self._passage: Conflict | None = None  # the first passage conflict of this item
 
     # -- helpers -------------------------------------------------------------------------
     def _conflict(self, spec: ItemSpec, pose: Pose) -> Conflict | None:
         found = self.layout.conflicts(spec, pose, self.related.get(spec.name, frozenset()),
                                       first=True)
-        return found[0] if found else None
+        if not found:
+            return None
+        if found[0].kind in _PASSAGE_KINDS and self._passage is None:
+            self._passage = found[0]
+        return found[0]
 
     def _try(self, spec: ItemSpec, pose: Pose) -> Conflict | None:
         """Add ``spec`` at ``pose`` if nothing blocks it; else return the conflict."""
@@ -198,13 +207,16 @@ class Placer:
     def _free_poses(self, spec: ItemSpec, rotation: int, axis: int, fixed: float, lo: float,
                     hi: float, preferred: float) -> Iterator[Pose]:
         """Poses on a segment at which nothing blocks ``spec``: per free interval the
-        point nearest ``preferred``, nearest intervals first."""
+        point nearest ``preferred``, nearest intervals first; then the ends and middles
+        of the intervals (where the nearest points break the passage rule)."""
         related = self.related.get(spec.name, frozenset())
         intervals = self.layout.free_intervals(spec, rotation, axis, fixed, lo, hi, related)
-        intervals.sort(key=lambda iv: abs(min(max(preferred, iv[0]), iv[1]) - preferred))
-        for interval in intervals:
-            value = nearest_in([interval], preferred)
-            assert value is not None
+        nearest = sorted(v for v in (nearest_in([iv], preferred) for iv in intervals)
+                         if v is not None)
+        nearest.sort(key=lambda v: abs(v - preferred))
+        others = sorted({v for a, b in intervals for v in (a, (a + b) / 2, b)}
+                        - set(nearest), key=lambda v: abs(v - preferred))
+        for value in nearest + others:
             pose = _pose(axis, value, 1 - axis, fixed, rotation)
             if self._conflict(spec, pose) is None:
                 yield pose
@@ -224,9 +236,17 @@ class Placer:
         ``start`` is the item's steered start position (None for children). An item
         already seated with its parent's family is left as it is.
         """
-        rule = spec.rule
         if spec.name in self.layout.placed:
             return None
+        self._passage = None
+        reason = self._place(spec, start)
+        passage = self._passage.describe() if self._passage is not None else None
+        if reason is None or passage is None or passage in reason:
+            return reason
+        return f"{reason}; where it fits, it {passage}"
+
+    def _place(self, spec: ItemSpec, start: tuple[float, float] | None) -> str | None:
+        rule = spec.rule
         if rule.pair_with is not None:
             if rule.pair_with not in self.layout.placed:
                 return f"parent {rule.pair_with} not placed"

@@ -14,6 +14,10 @@ Per room (thesis algorithms 5-7, DESIGN §8):
    room stops retrying. The thesis instead nudged the blocked item step by step for
    ``clearanceTries`` steps; with exact geometry a nudge cannot help, a new start can.
 
+Every solid item must leave a passage ``passage_width`` wide between the room's doors
+and keep most of the room reachable (:mod:`.passage`); a pose that breaks this is
+rejected like a collision.
+
 Doors and windows get their detail items (:mod:`.details`). The solver is a pure
 function of its inputs and the random stream.
 """
@@ -28,9 +32,10 @@ from shapely.geometry import Polygon
 
 from cga.model import Diagnostic, FloorPlan, FurnitureItem
 
-from .clearance import Keepout, WindowStrip, door_keepouts, window_strips
+from .clearance import Keepout, OpeningStrip, door_keepouts, door_strips, window_strips
 from .details import detail_items
 from .layout import ItemSpec, Layout, Pose
+from .passage import PASSAGE_WIDTH, Passage
 from .placement import Placer
 from .rules import FurnitureRules
 from .steering import random_start, separation_steering
@@ -44,19 +49,20 @@ PATIENCE = 5
 
 @dataclass(frozen=True)
 class RoomSite:
-    """What the solver needs to know about a room: its free floor, the door zones in it
-    and its windows."""
+    """What the solver needs to know about a room: its free floor, the door zones in it,
+    its windows and its doors."""
 
     id: int
     interior: Polygon
     keepouts: tuple[Keepout, ...] = ()
-    windows: tuple[WindowStrip, ...] = ()
+    windows: tuple[OpeningStrip, ...] = ()
+    doors: tuple[OpeningStrip, ...] = ()
 
     @classmethod
     def from_plan(cls, plan: FloorPlan, room_id: int) -> "RoomSite":
         room = plan.room(room_id)
         return cls(room_id, room.interior, tuple(door_keepouts(plan, room_id)),
-                   tuple(window_strips(plan, room_id)))
+                   tuple(window_strips(plan, room_id)), tuple(door_strips(plan, room_id)))
 
 
 @dataclass(frozen=True)
@@ -81,10 +87,10 @@ def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
 
 
 def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
-                iterations: int
+                iterations: int, passage: Passage | None
                 ) -> tuple[dict[str, tuple[ItemSpec, Pose]], list[tuple[str, str]]]:
     starts = _starts(site, specs, rng, iterations)
-    layout = Layout(site.interior, list(site.keepouts), list(site.windows))
+    layout = Layout(site.interior, list(site.keepouts), list(site.windows), passage)
     placer = Placer(layout, specs, rng)
     left_out = []
     for spec in specs:
@@ -96,7 +102,7 @@ def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Genera
 
 def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator, *,
                  steering_iterations: int = 10, attempts: int = 20,
-                 patience: int = PATIENCE) -> RoomResult:
+                 patience: int = PATIENCE, passage_width: float = PASSAGE_WIDTH) -> RoomResult:
     """Place ``specs`` (in placement order) in one room.
 
     Parameters
@@ -113,6 +119,9 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
         Solves from fresh random starts while items are left out (at least one).
     patience:
         Consecutive attempts without improvement after which the room stops retrying.
+    passage_width:
+        Width (m) of the passage every solid item must leave between the room's doors
+        (:mod:`.passage`); 0 switches the rule off.
 
     Returns
     -------
@@ -123,11 +132,16 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     -----
     One attempt costs O(n · (w + k)) shapely queries for n items, w walls and k
     obstacles near a candidate strip; a full room of a dozen items takes milliseconds.
+    The passage rule adds a shapely difference and a few predicates per pose that is
+    otherwise free.
     """
+    if passage_width < 0:
+        raise ValueError(f"passage_width must not be negative, got {passage_width:g}")
+    passage = Passage(site.interior, site.doors, passage_width) if passage_width > 0 else None
     best: tuple[dict[str, tuple[ItemSpec, Pose]], list[tuple[str, str]]] | None = None
     stale = 0
     for _ in range(max(1, attempts)):
-        placed, left_out = _solve_once(site, specs, rng, steering_iterations)
+        placed, left_out = _solve_once(site, specs, rng, steering_iterations, passage)
         if best is None or len(placed) > len(best[0]):
             best, stale = (placed, left_out), 0
         else:
@@ -147,7 +161,8 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
 def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
                  models: Mapping[str, tuple[str, tuple[float, float, float]]],
                  rng: np.random.Generator, *, steering_iterations: int = 10,
-                 attempts: int = 20) -> tuple[tuple[FurnitureItem, ...], tuple[Diagnostic, ...]]:
+                 attempts: int = 20, passage_width: float = PASSAGE_WIDTH
+                 ) -> tuple[tuple[FurnitureItem, ...], tuple[Diagnostic, ...]]:
     """Furnish every typed room of ``plan`` and add the door and window details.
 
     Parameters
@@ -161,7 +176,7 @@ def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
     rng:
         The floor's random stream; each room gets its own child stream (in room-id
         order), so a room's layout does not depend on how the others went.
-    steering_iterations, attempts:
+    steering_iterations, attempts, passage_width:
         See :func:`furnish_room`.
 
     Returns
@@ -181,7 +196,8 @@ def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
             continue
         specs = [ItemSpec(rule, *models[rule.name]) for rule in room_rules]
         result = furnish_room(RoomSite.from_plan(plan, room.id), specs, stream,
-                              steering_iterations=steering_iterations, attempts=attempts)
+                              steering_iterations=steering_iterations, attempts=attempts,
+                              passage_width=passage_width)
         furniture.extend(result.items)
         for name, reason in result.left_out:
             diagnostics.append(Diagnostic("warning", STAGE,

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from shapely.geometry import Point, box
 
-from cga.operations.furniture.clearance import Keepout, WindowStrip
+from cga.operations.furniture.clearance import Keepout, OpeningStrip
 from cga.operations.furniture.layout import ItemSpec, Layout, Pose, nearest_in
 from cga.operations.furniture.rules import FurnitureRule
 
@@ -43,7 +43,7 @@ def test_clearance_blocks_others_but_not_family():
 
 def test_door_zones_and_windows():
     door = Keepout("the swing of door 1", Point(1, 0).buffer(0.9).intersection(box(1, 0, 2, 1)))
-    window = WindowStrip("window 2", (2.0, 0.0), (1.0, 0.0), (0.0, 1.0), 1.2, 0.0)
+    window = OpeningStrip("window 2", (2.0, 0.0), (1.0, 0.0), (0.0, 1.0), 1.2, 0.0)
     layout = Layout(ROOM, [door], [window])
     assert layout.conflicts(spec("a"), Pose(1.5, 0.5, 0))[0].describe() == "blocks the swing of door 1"
     shelf = spec("shelf", 1.0, 0.3, can_close_window=True, clearance_front=0.2)
