@@ -18,7 +18,16 @@ Checked, with a tolerance of 1 mm:
 * children keep their pair distances (``maxPairDistance`` 0 = unbounded; not checked
   for a child against a wall) and face their parent: ``canBeAround`` children look at
   it, ``isOnTheSide`` children stand beside it turned the same way, other children
-  stand in front of it, within its width, turned to face it.
+  stand in front of it, within its width, turned to face it;
+* passage (``passage_width`` > 0): a round robot of that diameter that can go from one
+  door of a room to another in the empty room still can with the furniture in. The
+  robot's centre may go where the free floor (room interior minus the solid items)
+  is at least ``passage_width / 2`` away from everything (a round buffer, i.e. a disc
+  robot, where the solver uses a square one: the solver's guarantee is the stronger);
+  it enters through a door into the band in front of it, door-wide and ``passage_width
+  / 2 + 0.1`` deep. Doors and the pieces of free floor their bands meet form a graph
+  (networkx); doors in one component of the empty room's graph must stay in one
+  component. The solver's "85 % of the floor stays reachable" is not checked here.
 """
 
 from __future__ import annotations
@@ -28,14 +37,18 @@ import math
 import re
 from pathlib import Path
 
+import networkx as nx
 import numpy as np
 from shapely import STRtree
 from shapely.geometry import LineString, Point, Polygon, box
+from shapely.ops import unary_union
 
-__all__ = ["read_furniture_rules", "furniture_violations"]
+__all__ = ["read_furniture_rules", "furniture_violations", "passage_violations"]
 
 TOL = 1e-3
 OUTSIDE = -1
+PASSAGE_WIDTH = 0.6
+"""The solver's documented default passage width (m)."""
 
 
 def _key(header: str) -> str:
@@ -136,8 +149,59 @@ def _clearance_boxes(item, rule) -> list[tuple[str, Polygon]]:
     return out
 
 
-def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0) -> list[str]:
-    """Every broken guarantee of a furnished floor, as readable messages (empty = valid)."""
+def door_band(plan, door, room_id: int, depth: float) -> Polygon:
+    """The band in front of ``door`` in room ``room_id``: door-wide, ``depth`` beyond the
+    wall face."""
+    wall = plan.wall(door.wall)
+    normal = _side_into(plan, wall, door.position, room_id)
+    direction = np.subtract(wall.end, wall.start) / wall.length
+    face = plan.room(room_id).interior.distance(Point(door.position))
+    a = np.asarray(door.position) - direction * door.width / 2
+    b = np.asarray(door.position) + direction * door.width / 2
+    reach = normal * (face + depth)
+    return Polygon([tuple(a), tuple(b), tuple(b + reach), tuple(a + reach)])
+
+
+def _door_components(floor, bands: dict[int, Polygon]) -> list[set[int]]:
+    """Doors joined by pieces of ``floor`` their bands meet (with area), as sets of ids."""
+    graph = nx.Graph()
+    graph.add_nodes_from(("door", d) for d in bands)
+    pieces = [p for p in getattr(floor, "geoms", [floor]) if p.area > 1e-9]
+    for k, piece in enumerate(pieces):
+        for d, band in bands.items():
+            if piece.intersection(band).area > 1e-9:
+                graph.add_edge(("piece", k), ("door", d))
+    return [{d for kind, d in c if kind == "door"} for c in nx.connected_components(graph)]
+
+
+def passage_violations(plan, width: float = PASSAGE_WIDTH) -> list[str]:
+    """Rooms whose furniture cuts doors apart that a robot of diameter ``width`` could
+    travel between in the empty room (see the module docstring)."""
+    problems = []
+    radius = width / 2
+    for room in plan.rooms:
+        doors = [d for d in plan.doors if room.id in d.rooms]
+        if len(doors) < 2:
+            continue
+        bands = {d.id: door_band(plan, d, room.id, radius + 0.1) for d in doors}
+        solid = [i.footprint() for i in plan.furniture
+                 if i.room == room.id and not i.is_detail and not i.non_collision]
+        empty = _door_components(room.interior.buffer(-radius), bands)
+        free = room.interior.difference(unary_union(solid)) if solid else room.interior
+        furnished = _door_components(free.buffer(-radius), bands)
+        for group in empty:
+            if len(group) > 1 and not any(group <= c for c in furnished):
+                apart = sorted(sorted(c & group) for c in furnished if c & group)
+                problems.append(f"room {room.id}: furniture cuts doors "
+                                f"{' from '.join(map(str, apart))} apart")
+    return problems
+
+
+def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0,
+                         passage_width: float = PASSAGE_WIDTH) -> list[str]:
+    """Every broken guarantee of a furnished floor, as readable messages (empty = valid).
+
+    ``passage_width`` 0 skips the passage check (for floors furnished without it)."""
     rules = read_furniture_rules(rules_path, units)
     types = {room.id: (room.type or "").lower() for room in plan.rooms}
     problems: list[str] = []
@@ -156,7 +220,8 @@ def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0) ->
         room = plan.room(item.room)
         if not room.interior.buffer(TOL).covers(item.footprint()):
             problems.append(f"{item.name} (room {item.room}) is not inside its room's free floor")
-    for i, j in zip(*tree.query(shrunk, predicate="intersects")):
+    pairs = tree.query(shrunk, predicate="intersects") if shrunk else ([], [])
+    for i, j in zip(*pairs):
         if i < j:
             a, b = solid[i], solid[j]
             problems.append(f"{a.name} (room {a.room}) overlaps {b.name} (room {b.room})")
@@ -203,6 +268,8 @@ def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0) ->
         if rule["max"] > 0 and not rule["along_wall"] and gap > rule["max"] + TOL:
             problems.append(f"{where}: {gap:.3f} m from {parent.name}, above {rule['max']:g}")
         problems.extend(_orientation_problems(item, parent, rule, where))
+    if passage_width > 0:
+        problems.extend(passage_violations(plan, passage_width))
     return problems
 
 
