@@ -176,6 +176,8 @@ class Passage:
         if not len(pieces):
             return Blockage("door", self.labels[0])
         meets = _meets(pieces, self.approaches).tolist()
+        if len(pieces) == 1 and all(meets[0]):  # the usual case: nothing cut off
+            return None
         areas = shapely.area(pieces).tolist()
         reached = [any(row[k] for row in meets) for k in doors]
         owner = list(doors)  # union-find: a door joins the pieces its approach meets
