@@ -99,14 +99,15 @@ class Passage:
         self.radius = width / 2
         self.min_share = min_share
         eroded = interior.buffer(-self.radius, join_style="mitre")
-        zones = [d.zone(self.radius + APPROACH_MARGIN).buffer(-_TOUCH, join_style="mitre")
-                 for d in doors]
+        zones = np.array([d.zone(self.radius + APPROACH_MARGIN).buffer(-_TOUCH,
+                                                                       join_style="mitre")
+                          for d in doors], dtype=object)
         pieces = _pieces(eroded)
         meets = _meets(pieces, zones)
         used = np.flatnonzero(meets.any(axis=0))  # doors a robot can use in the empty room
         meets = meets[:, used]
         self.labels = [doors[k].label for k in used]
-        self.approaches = [zones[k] for k in used]
+        self.approaches = zones[used]
         self.groups = _groups(meets)
         self.floor = shapely.union_all(pieces[meets.any(axis=1)])
         self._states: dict[frozenset[Box], _State] = {}
@@ -218,11 +219,11 @@ def _pieces(geometry: BaseGeometry) -> np.ndarray:
     return parts[shapely.area(parts) > _AREA_EPS] if len(parts) else parts
 
 
-def _meets(pieces: np.ndarray, zones: Sequence[BaseGeometry]) -> np.ndarray:
+def _meets(pieces: np.ndarray, zones: np.ndarray) -> np.ndarray:
     """``bool[piece, zone]``: the piece meets the zone."""
     if not len(pieces) or not len(zones):
         return np.zeros((len(pieces), len(zones)), dtype=bool)
-    return shapely.intersects(pieces[:, None], np.asarray(zones, dtype=object)[None, :])
+    return shapely.intersects(pieces[:, None], zones[None, :])
 
 
 def _groups(meets: np.ndarray) -> list[list[int]]:
