@@ -128,6 +128,11 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     RoomResult
         Items in placement order and the reasons for those left out.
 
+    Raises
+    ------
+    ValueError
+        ``passage_width`` is negative.
+
     Notes
     -----
     One attempt costs O(n · (w + k)) shapely queries for n items, w walls and k
