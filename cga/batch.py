@@ -11,12 +11,14 @@ folders are removed, and a trailing partial manifest line is dropped.
 
 from __future__ import annotations
 
+import functools
 import json
 import math
+import multiprocessing
 import os
 import shutil
+import signal
 import time
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Iterable
@@ -224,24 +226,32 @@ def run_batch(grammar: str | Path, *, count: int, out_dir: str | Path, jobs: int
     return BatchReport(records=in_range, wall_seconds=wall, built_now=len(seeds))
 
 
+def _ignore_interrupts() -> None:
+    """Worker initializer: Ctrl-C in a terminal reaches the whole process group; only
+    the parent handles it (and stops the workers), so workers print no tracebacks."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _run(grammar: str, seeds: list[int], out_dir: str, options: dict[str, Any],
          jobs: int) -> Iterable[BatchRecord]:
-    """Yield records as builds finish; at most ``2 * jobs`` builds queued at once."""
+    """Yield records as builds finish.
+
+    On an interruption (or any error) in the parent, the workers are terminated at once:
+    a build they had not finished is left as a staging folder, which the next run
+    removes, and it has no manifest line, so it is built again.
+    """
     if jobs == 1:
         for seed in seeds:
             yield _build_one(grammar, seed, out_dir, options)
         return
-    pending_seeds = iter(seeds)
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
-        running = set()
-        for seed in pending_seeds:
-            running.add(pool.submit(_build_one, grammar, seed, out_dir, options))
-            if len(running) >= 2 * jobs:
-                break
-        while running:
-            finished, running = wait(running, return_when=FIRST_COMPLETED)
-            for future in finished:
-                yield future.result()
-                next_seed = next(pending_seeds, None)
-                if next_seed is not None:
-                    running.add(pool.submit(_build_one, grammar, next_seed, out_dir, options))
+    work = functools.partial(_build_one, grammar, out_dir=out_dir, build_options=options)
+    pool = multiprocessing.get_context("spawn").Pool(jobs, initializer=_ignore_interrupts)
+    try:
+        yield from pool.imap_unordered(work, seeds, chunksize=1)
+    except BaseException:
+        pool.terminate()
+        raise
+    else:
+        pool.close()
+    finally:
+        pool.join()

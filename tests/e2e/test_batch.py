@@ -67,3 +67,19 @@ def test_folder_without_manifest_line_is_rebuilt(tmp_path):
     report = run_batch(MASSING, count=2, out_dir=tmp_path, build_options={"physics": False})
     assert report.built_now == 1
     assert sorted(_manifest_seeds(tmp_path)) == [0, 1]
+
+
+def test_parallel_batch_stops_its_workers_when_interrupted_and_resumes(tmp_path):
+    def stop_after_one(done, total):
+        if done == 1:
+            raise Interrupted
+
+    with pytest.raises(Interrupted):
+        run_batch(MASSING, count=6, out_dir=tmp_path, jobs=2, build_options={"physics": False},
+                  on_progress=stop_after_one)
+    assert len(_manifest_seeds(tmp_path)) == 1
+    report = run_batch(MASSING, count=6, out_dir=tmp_path, jobs=2,
+                       build_options={"physics": False})
+    assert report.built_now == 5
+    assert sorted(_manifest_seeds(tmp_path)) == list(range(6))
+    assert not list(tmp_path.glob(".building-*"))
