@@ -7,7 +7,9 @@ Euclidean distance transform: a cell is drivable when its clearance, the distanc
 its centre to the nearest obstacle, is at least the radius), and floods the drivable
 cells from the start. The ground floor starts outside its front door, so a wardrobe in
 front of the door shows up as the door being blocked. Floors without a front door start
-in their largest room: the model has no stairs yet, and the report says so.
+in their entry room, where ``type_rooms`` says the stair arrives
+(``room_graph.graph["entry"]``), or, on an untyped floor, in the largest room: the model
+has no stair geometry yet, and the report says so.
 
 For each room the report gives whether the robot reaches it, what share of the room's
 drivable floor it reaches, and the narrowest passage on the way there: the bottleneck of
@@ -112,7 +114,8 @@ class RoomReach:
 @dataclass(frozen=True)
 class FloorReach:
     """One floor's result. ``start`` is ``"front_door"`` (the robot starts outside door
-    ``start_door``) or ``"largest_room"`` (inside ``start_room``); ``note`` says why.
+    ``start_door``), ``"entry_room"`` (inside ``start_room``, the room typing made the
+    floor's entry) or ``"largest_room"`` (untyped floors); ``note`` says why.
     ``elapsed_seconds`` (wall-clock) is left out of :meth:`to_dict`, which is deterministic."""
 
     floor: int
@@ -301,7 +304,7 @@ class _FloorCheck:
             self.reached = self.labels == self.labels[cell]
         reached = self.reached
         reachable = {rid: bool((m & reached).any()) for rid, m in self.masks.items()}
-        inside_start = start_room if start_kind == "largest_room" else None
+        inside_start = start_room if start_kind != "front_door" else None
         narrowest = self._narrowest(cell, reached, inside_start) if cell is not None else {}
         rooms = []
         for room in self.plan.rooms:
@@ -327,14 +330,20 @@ class _FloorCheck:
             inside = next((r for r in self.front.rooms if r != OUTSIDE), None)
             return ("front_door", self._outside_of(self.front), inside,
                     f"the robot starts outside front door {self.front.id}")
-        largest = max(self.plan.rooms, key=lambda r: (r.area, -r.id))
-        mask = self.masks[largest.id]
-        where = np.where(mask, self.clear, -np.inf)
-        row, col = np.unravel_index(int(np.argmax(where)), where.shape)
         why = ("upper floor" if self.plan.index > 0 else "floor without a front door")
-        return ("largest_room", self.grid.cell_to_world(row, col), largest.id,
-                f"{why}: the model has no stairs, so the robot starts in the largest room "
-                f"(room {largest.id}, {largest.area:.1f} m²), at its most open point")
+        graph = self.plan.room_graph
+        entry = graph.graph.get("entry") if graph is not None else None
+        if entry is not None:
+            room = self.plan.room(entry)
+            kind, which = "entry_room", "the entry room where the stair arrives"
+        else:
+            room = max(self.plan.rooms, key=lambda r: (r.area, -r.id))
+            kind, which = "largest_room", "the largest room"
+        where = np.where(self.masks[room.id], self.clear, -np.inf)
+        row, col = np.unravel_index(int(np.argmax(where)), where.shape)
+        return (kind, self.grid.cell_to_world(row, col), room.id,
+                f"{why}: the model has no stair geometry, so the robot starts in {which} "
+                f"(room {room.id}, {room.area:.1f} m²), at its most open point")
 
     def _outside_of(self, door: Door) -> tuple[float, float]:
         """A point outside the front door, far enough from the wall for the robot."""
