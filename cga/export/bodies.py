@@ -46,7 +46,8 @@ from .obj import MeshGroup, mtl_text, node_groups, node_material, obj_text, vert
 from .palette import RGB, node_color
 
 __all__ = ["RobotBody", "BodyFiles", "MESH_DIR", "CONTACT_SHRINK", "robot_bodies",
-           "write_body_meshes", "box_inertia", "centre_of_mass", "numbers_text"]
+           "write_body_meshes", "write_bodies", "box_inertia", "centre_of_mass",
+           "numbers_text"]
 
 MESH_DIR = "meshes"
 """Folder (relative to the output folder) holding the robot exporters' OBJ files."""
@@ -270,3 +271,19 @@ def write_body_meshes(bodies: Sequence[RobotBody], out_dir: Path, name: str
             for part in body.collisions)
         files[body.name] = BodyFiles(visual, f"{MESH_DIR}/{mtl_name}", collisions)
     return files
+
+
+def write_bodies(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: str
+                 ) -> tuple[list[RobotBody], dict[str, BodyFiles]]:
+    """The building body and the item bodies (:func:`robot_bodies`), with their mesh
+    files written under ``out_dir`` (:func:`write_body_meshes`): what the URDF and SDF
+    exporters both start from.
+
+    Returns
+    -------
+    (bodies, files)
+        ``bodies`` with the building first; ``files`` by body name.
+    """
+    building, items = robot_bodies(scene, nodes)
+    bodies = [building, *items]
+    return bodies, write_body_meshes(bodies, Path(out_dir), name)

@@ -19,7 +19,7 @@ from pathlib import Path
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
-from .bodies import BodyFiles, RobotBody, numbers_text, robot_bodies, write_body_meshes
+from .bodies import BodyFiles, RobotBody, numbers_text, write_bodies
 
 __all__ = ["SDF_VERSION", "world_as_sdf", "export_sdf"]
 
@@ -82,12 +82,10 @@ def export_sdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: st
     Raises
     ------
     ExportError
-        See :func:`cga.export.bodies.robot_bodies`.
+        See :func:`cga.export.bodies.write_bodies`.
     """
     out = Path(out_dir)
-    building, items = robot_bodies(scene, nodes)
-    bodies = [building, *items]
-    files = write_body_meshes(bodies, out, name)
+    bodies, files = write_bodies(scene, nodes, out, name)
     world = atomic_write(out / f"{name}.world.sdf", world_as_sdf(name, bodies, files))
     return [world] + list(dict.fromkeys(
         out / f for body in bodies for f in files[body.name].paths()))

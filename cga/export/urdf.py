@@ -26,7 +26,7 @@ from pathlib import Path
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
-from .bodies import BodyFiles, RobotBody, numbers_text, robot_bodies, write_body_meshes
+from .bodies import BodyFiles, RobotBody, numbers_text, write_bodies
 
 __all__ = ["URDF_DIR", "body_as_urdf", "export_urdf"]
 
@@ -101,12 +101,10 @@ def export_urdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: s
     Raises
     ------
     ExportError
-        See :func:`cga.export.bodies.robot_bodies`.
+        See :func:`cga.export.bodies.write_bodies`.
     """
     out = Path(out_dir)
-    building, items = robot_bodies(scene, nodes)
-    bodies = [building, *items]
-    files = write_body_meshes(bodies, out, name)
+    bodies, files = write_bodies(scene, nodes, out, name)
     written, index = [], []
     for body in bodies:
         relative = f"{URDF_DIR}/{name}.{body.name}.urdf"
