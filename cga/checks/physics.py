@@ -45,6 +45,7 @@ import numpy as np
 import shapely
 import trimesh
 
+from cga.collision import BULLET_MARGIN, CONTACT_SHRINK, shrink_part
 from cga.scene import Scene, SceneNode
 
 from ._bullet import direct_client, obj_text
@@ -89,16 +90,12 @@ _STABILITY_TOLERANCE = 0.01
 """m: an item whose centre of mass lies further than this outside the hull of the points
 it stands on is about to tip."""
 
-_MARGIN = 0.001
-"""m: Bullet's collision margin around every shape here (convex hulls of a compound,
-triangle meshes). A shape acts as if inflated by it, and pybullet's distances include it."""
-
-_SHRINK = 2 * _MARGIN
-"""m: each item's convex parts are shrunk by this much per face. With the margin added
-back, an item's surface lies 1 mm inside its true one while the structure's lies 1 mm
-outside, so an item standing on the floor or flush against a wall touches it exactly,
-and two items placed side by side keep a 2 mm gap. Unshrunk, every touching pair would
-start 2 mm "deep" in each other and the contact solver would push them apart."""
+_MARGIN = BULLET_MARGIN
+_SHRINK = CONTACT_SHRINK
+"""With the margin added back, an item's surface lies 1 mm inside its true one while the
+structure's lies 1 mm outside, so an item standing on the floor or flush against a wall
+touches it exactly, and two items placed side by side keep a 2 mm gap
+(:mod:`cga.collision`)."""
 
 _INFLATION = {"item": _MARGIN - _SHRINK, "static": _MARGIN}
 """How far each kind of body's collision surface lies outside its true surface (m); a
@@ -490,14 +487,8 @@ def _support_gap(parts: Sequence[trimesh.Trimesh], centroid: np.ndarray) -> floa
 
 
 def _shrunk(part: trimesh.Trimesh) -> trimesh.Trimesh:
-    """The part scaled about its box centre so each axis-aligned face moves in by
-    :data:`_SHRINK` (exact for box parts; a part thinner than four times that keeps at
-    least half its size)."""
-    lo, hi = part.bounds
-    centre, extent = (lo + hi) / 2, hi - lo
-    scale = np.maximum(extent - 2 * _SHRINK, extent / 2) / np.maximum(extent, 1e-12)
-    return trimesh.Trimesh(vertices=(np.asarray(part.vertices) - centre) * scale + centre,
-                           faces=part.faces, process=False)
+    """The part with each face moved in by :data:`_SHRINK` (:func:`cga.collision.shrink_part`)."""
+    return trimesh.Trimesh(vertices=shrink_part(part.vertices), faces=part.faces, process=False)
 
 
 def _mass(node: SceneNode, volume: float) -> float:

@@ -16,7 +16,8 @@ of mass (its convex parts at uniform density) and is turned by the item's yaw
   (exact extents, since turns are quarter turns), about the centre of mass.
 
 Solid items are dynamic with the mass of their ``mass`` extra and collide through their
-convex parts (shrunk by :data:`CONTACT_SHRINK`), one collision element each. Static
+convex parts (shrunk for Bullet's margin, :mod:`cga.collision`), one collision element
+each. Static
 furniture (door leaves, window frames, rugs) is fixed and visual only: the physics and
 navigability checks ignore it, a rug lies under what stands on it, and a door leaf must
 not close the gap the navigability check drove through.
@@ -37,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from cga.collision import shrink_part
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
@@ -45,19 +47,13 @@ from .frames import WORLD_TO_ROS, RosPose, pose_to_ros, world_to_ros
 from .obj import MeshGroup, mtl_text, node_groups, node_material, obj_text, vertex_colors
 from .palette import RGB, node_color
 
-__all__ = ["RobotBody", "BodyFiles", "MESH_DIR", "CONTACT_SHRINK", "robot_bodies",
+__all__ = ["RobotBody", "BodyFiles", "MESH_DIR", "robot_bodies",
            "write_body_meshes", "write_bodies", "box_inertia", "centre_of_mass",
            "numbers_text"]
 
 MESH_DIR = "meshes"
 """Folder (relative to the output folder) holding the robot exporters' OBJ files."""
 
-CONTACT_SHRINK = 0.002
-"""m: how far each face of an item's convex collision parts is moved in. pybullet gives
-every shape loaded from URDF/SDF a 1 mm collision margin, so an item standing exactly on
-the floor would start 2 mm deep in it and be pushed about; shrunk by 2 mm it touches
-exactly (the physics check builds its bodies the same way). Other simulators see items
-2 mm smaller than drawn, well below any placement tolerance."""
 
 
 @dataclass(frozen=True)
@@ -128,15 +124,6 @@ def _unique(names: list[str]) -> list[str]:
     return out
 
 
-def _shrink_for_margin(vertices: np.ndarray) -> np.ndarray:
-    """A convex part scaled about its box centre so each face moves in by
-    :data:`CONTACT_SHRINK` (parts thinner than four times that keep half their size)."""
-    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
-    centre, extent = (lo + hi) / 2, hi - lo
-    scale = np.maximum(extent - 2 * CONTACT_SHRINK, extent / 2) / np.maximum(extent, 1e-12)
-    return (vertices - centre) * scale + centre
-
-
 def centre_of_mass(parts: Sequence[Any]) -> np.ndarray:
     """World centre of mass of solid convex parts of uniform density (the volume-weighted
     mean of their centroids); the bounding-box centre if they enclose no volume."""
@@ -180,7 +167,7 @@ def _item_body(node: SceneNode, name: str) -> RobotBody:
                           f"(got {node.extras.get('mass')!r}); robot exports need the "
                           f"mass of every movable item")
     solids = [local(p) for p in parts]
-    collisions = tuple(MeshGroup(f"{label}_part{k}", _shrink_for_margin(v),
+    collisions = tuple(MeshGroup(f"{label}_part{k}", shrink_part(v),
                                  np.asarray(p.faces), material)
                        for k, (p, v) in enumerate(zip(parts, solids)))
     stacked = np.vstack(solids)
