@@ -45,12 +45,11 @@ import numpy as np
 import shapely
 import trimesh
 
-from cga.collision import BULLET_MARGIN, CONTACT_SHRINK, shrink_part
+from cga.collision import BULLET_MARGIN, CONTACT_SHRINK, collision_parts, shrink_part
 from cga.scene import Scene, SceneNode
 
 from ._bullet import direct_client, obj_text
 from ._solids import convex_pieces
-from .vhacd import convex_decomposition
 
 __all__ = [
     "DEFAULT_DENSITY",
@@ -376,7 +375,7 @@ class _World:
 
     def add_item(self, node: SceneNode, cache_dir: Path | None) -> _Body:
         """A dynamic compound body for a furniture item, its origin at the parts' centroid."""
-        parts = _convex_parts(node, cache_dir)
+        parts = collision_parts(node, cache_dir)
         volumes = np.array([max(float(p.volume), 0.0) for p in parts])
         centres = np.array([p.center_mass if v > 0 else p.centroid for p, v in zip(parts, volumes)])
         weights = volumes if volumes.sum() > 0 else np.ones(len(parts))
@@ -466,15 +465,6 @@ class _World:
 def _centroid(node: SceneNode) -> np.ndarray:
     lo, hi = node.mesh.bounds
     return (lo + hi) / 2
-
-
-def _convex_parts(node: SceneNode, cache_dir: Path | None) -> list[trimesh.Trimesh]:
-    """The item's convex parts, or a V-HACD decomposition when it has none or its model
-    says its parts are not convex (``extras["convex_parts"]`` False)."""
-    parts = [p for p in node.parts if len(p.faces)]
-    if parts and node.extras.get("convex_parts", True):
-        return parts
-    return list(convex_decomposition(node.mesh, cache=cache_dir))
 
 
 def _support_gap(parts: Sequence[trimesh.Trimesh], centroid: np.ndarray) -> float:

@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from cga.collision import shrink_part
+from cga.collision import collision_parts, shrink_part
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
@@ -142,7 +142,7 @@ def trimesh_bounds(meshes: Sequence[Any]) -> np.ndarray:
 
 def _item_body(node: SceneNode, name: str) -> RobotBody:
     turns = int(node.extras.get("rotation", 0)) % 4
-    parts = node.parts or (node.mesh,)
+    parts = collision_parts(node) if not node.static else (node.parts or (node.mesh,))
     pose = pose_to_ros(centre_of_mass(parts), 90.0 * turns)
     # link frame: the ROS axes turned by the yaw, origin at the centre of mass; a ROS
     # point p has link coordinates yawᵀ (p − origin), i.e. (p − origin) @ yaw as rows

@@ -197,3 +197,31 @@ def test_base_pose_is_the_centre_of_mass_and_overhangs_balance(client, small_sce
         client.stepSimulation()
     end = np.array(client.getBasePositionAndOrientation(bodies[washbasin.path])[0])
     assert np.abs(end - start).max() < 0.005
+
+
+def test_non_convex_user_model_gets_the_same_convex_pieces_as_the_physics_check(tmp_path,
+                                                                                  monkeypatch):
+    import trimesh
+
+    from cga.collision import collision_parts
+    from cga.export.bodies import robot_bodies
+    from cga.scene import Scene, SceneNode
+
+    monkeypatch.setenv("CGA_CACHE_DIR", str(tmp_path / "cache"))
+    slab = trimesh.creation.box(extents=(6.0, 0.2, 6.0))
+    slab.apply_translation((0.0, -0.1, 0.0))
+    leg = trimesh.creation.box(extents=(0.4, 1.0, 0.4))
+    arm = trimesh.creation.box(extents=(1.2, 0.4, 0.4))
+    arm.apply_translation((0.4, 0.3, 0.0))
+    leg.apply_translation((0.0, 0.5, 0.0))
+    el = trimesh.boolean.union([leg, arm], engine="manifold")  # an L: not convex
+    item = SceneNode(path="floor0/room0/furniture/sculpture", kind="furniture", mesh=el,
+                     extras={"model": "sculpture", "mass": 20.0, "rotation": 0,
+                             "convex_parts": False},
+                     static=False, parts=(el,))
+    scene = Scene(name="t", seed=0, units=1.0, terminals=[])
+    _, (body,) = robot_bodies(scene, [SceneNode(path="floor0/slab", kind="slab", mesh=slab),
+                                      item])
+    pieces = collision_parts(item)
+    assert len(pieces) >= 2 and all(p.is_convex for p in pieces)
+    assert len(body.collisions) == len(pieces)
