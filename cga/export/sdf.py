@@ -37,15 +37,18 @@ def _model(world: ET.Element, body: RobotBody, files: BodyFiles) -> None:
     ET.SubElement(model, "static").text = "1" if body.static else "0"
     ET.SubElement(model, "pose").text = numbers_text([*body.pose.position, *body.pose.rpy])
     link = ET.SubElement(model, "link", name="link")
-    if not body.static:
-        inertial = ET.SubElement(link, "inertial")
-        ET.SubElement(inertial, "pose").text = "0 0 0 0 0 0"
-        ET.SubElement(inertial, "mass").text = numbers_text([body.mass])
-        inertia = ET.SubElement(inertial, "inertia")
-        for key, value in zip(("ixx", "iyy", "izz"), body.inertia):
-            ET.SubElement(inertia, key).text = numbers_text([value])
-        for key in ("ixy", "ixz", "iyz"):
-            ET.SubElement(inertia, key).text = "0"
+    # Static models get an inertial too (Gazebo ignores it; without one pybullet's SDF
+    # reader warns once per link): a unit mass, unit inertia placeholder.
+    mass, inertia_diagonal = ((body.mass, body.inertia) if not body.static
+                              else (1.0, (1.0, 1.0, 1.0)))
+    inertial = ET.SubElement(link, "inertial")
+    ET.SubElement(inertial, "pose").text = "0 0 0 0 0 0"
+    ET.SubElement(inertial, "mass").text = numbers_text([mass])
+    inertia = ET.SubElement(inertial, "inertia")
+    for key, value in zip(("ixx", "iyy", "izz"), inertia_diagonal):
+        ET.SubElement(inertia, key).text = numbers_text([value])
+    for key in ("ixy", "ixz", "iyz"):
+        ET.SubElement(inertia, key).text = "0"
     visual = ET.SubElement(link, "visual", name="visual")
     _geometry(visual, files.visual)
     material = ET.SubElement(visual, "material")
