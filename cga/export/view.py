@@ -107,7 +107,8 @@ def _raster_triangle(tri: np.ndarray, rgb: np.ndarray, color: np.ndarray,
     area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
     if abs(area) < 1e-9:
         return
-    ys, xs = np.mgrid[ymin:ymax + 1, xmin:xmax + 1] + 0.5
+    ys = np.arange(ymin, ymax + 1)[:, None] + 0.5
+    xs = np.arange(xmin, xmax + 1)[None, :] + 0.5
     w0 = ((bx - xs) * (cy - ys) - (by - ys) * (cx - xs)) / area
     w1 = ((cx - xs) * (ay - ys) - (cy - ys) * (ax - xs)) / area
     w2 = 1.0 - w0 - w1
