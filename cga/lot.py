@@ -27,17 +27,23 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from shapely.geometry import MultiPolygon, Polygon, shape as geojson_shape
 from shapely.geometry.polygon import orient
 from shapely.validation import explain_validity
 
 from .errors import DerivationError, ResourceNotFoundError, Span, UsageError
 
-__all__ = ["DEFAULT_LOT", "LOT_FORMATS", "validate_lot", "rectangle", "polygon_lot",
+__all__ = ["DEFAULT_LOT", "MAX_EXTENT", "LOT_FORMATS", "validate_lot", "rectangle", "polygon_lot",
            "parse_lot", "load_geojson", "lot_from_call"]
 
 DEFAULT_LOT = (14.0, 10.0)
 """Width (x) and depth (z) in metres of the lot used when neither CLI nor grammar gives one."""
+
+MAX_EXTENT = 100_000.0
+"""Largest lot side and longest length argument accepted, in metres (100 km). Far beyond
+any building; larger coordinates lose the precision the geometry needs and can stall
+GEOS (an infinite area never converges)."""
 
 LOT_FORMATS = ('14x10 (width x depth in metres)', '"rectangle(14, 10)"',
                '"polygon((0,0),(14,0),(14,10),(0,10))"', "a .geojson file with one polygon")
@@ -55,7 +61,8 @@ def _expected() -> str:
 
 
 def validate_lot(polygon: Polygon, what: str = "lot") -> Polygon:
-    """``polygon`` checked (simple, at least 3 corners, positive area) and oriented
+    """``polygon`` checked (simple, at least 3 corners, finite coordinates within
+    :data:`MAX_EXTENT` of the origin, positive area) and oriented
     counter-clockwise in plan coordinates.
 
     Raises
@@ -67,6 +74,12 @@ def validate_lot(polygon: Polygon, what: str = "lot") -> Polygon:
         raise UsageError(f"{what}: expected a shapely Polygon, got {type(polygon).__name__}")
     if polygon.is_empty or len(polygon.exterior.coords) < 4:
         raise UsageError(f"{what}: a lot needs at least 3 distinct corners")
+    coords = np.asarray(polygon.exterior.coords)
+    if not np.isfinite(coords).all():
+        raise UsageError(f"{what}: every corner needs finite coordinates")
+    if np.abs(coords).max() > MAX_EXTENT:
+        raise UsageError(f"{what}: a corner coordinate is {np.abs(coords).max():.4g} m; a lot "
+                         f"must stay within {MAX_EXTENT:,.0f} m of the origin along x and z")
     if not polygon.is_valid:
         raise UsageError(f"{what}: the polygon is not simple ({explain_validity(polygon)}); "
                          f"list the corners in order around the boundary without crossings")

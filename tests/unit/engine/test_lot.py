@@ -107,3 +107,17 @@ def test_grammar_lot_call_errors_carry_the_span():
             lot_from_call(name, args, span, 1.0)
         assert str(info.value).startswith("g.grammar:2:6: error: Lot")
         assert text in str(info.value)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("1e308x1e308", "within 100,000 m of the origin"),
+    ("polygon((0,0),(1e6,0),(1e6,1),(0,1))", r"a corner coordinate is 1e\+06 m"),
+])
+def test_absurdly_large_lots_are_refused(text, message):
+    with pytest.raises(UsageError, match=message):
+        parse_lot(text)
+
+
+def test_non_finite_corners_are_refused():
+    with pytest.raises(UsageError, match="finite coordinates"):
+        rectangle(float("inf"), 5)
