@@ -8,7 +8,8 @@ parameter or one argument too many is an error pointing at the offending argumen
 the operation's signature as a hint.
 
 Kinds (``operations.base`` lists them) are checked and converted here, so operations
-receive clean Python values: ``length`` × units (metres), ``area`` × units² (m²),
+receive clean Python values: ``length`` × units (metres, at most
+:data:`~cga.lot.MAX_EXTENT`), ``area`` × units² (m²), numbers finite,
 ``count`` → ``int``, ``bool`` → ``bool``, ``axis`` → ``"x"|"y"|"z"``, ``tuple`` → tuple
 with each item converted by ``Param.items``, ``range`` → ``(lo, hi)``. Defaults are
 already in metres and are passed through unconverted.
@@ -17,12 +18,14 @@ already in metres and are passed through unconverted.
 from __future__ import annotations
 
 import difflib
+import math
 from collections.abc import Sequence
 from typing import Any
 
 from . import ast
 from .errors import DerivationError, Span
 from .expressions import UNKNOWN, Value, describe
+from .lot import MAX_EXTENT
 from cga.operations.base import Operation, Param
 
 __all__ = ["KINDS", "bind_arguments", "convert"]
@@ -52,16 +55,28 @@ def _describe_kind(value: Value) -> str:
 def _as_number(value: Value) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise _KindError(f"expected a number, got {_describe_kind(value)}")
+    if not math.isfinite(value):
+        raise _KindError(f"expected a finite number, got {describe(value)}")
     return float(value)
+
+
+def _as_length(value: Value, units: float, power: int) -> float:
+    """A length (``power`` 1) or area (2) in metres, at most :data:`MAX_EXTENT` long."""
+    number = _as_number(value) * units ** power
+    if abs(number) > MAX_EXTENT ** power:
+        unit = "m" if power == 1 else "m²"
+        raise _KindError(f"is {number:.4g} {unit}; lengths are limited to "
+                         f"{MAX_EXTENT:,.0f} m")
+    return number
 
 
 def _convert_scalar(kind: str, value: Value, units: float) -> Any:
     if value is UNKNOWN:
         return UNKNOWN
     if kind == "length":
-        return _as_number(value) * units
+        return _as_length(value, units, 1)
     if kind == "area":
-        return _as_number(value) * units ** 2
+        return _as_length(value, units, 2)
     if kind == "number":
         return _as_number(value)
     if kind == "count":

@@ -139,3 +139,17 @@ def test_unknown_propagates_in_static_evaluation():
     assert evaluate(ast.RandomRange(n(1), n(2), S), ns) is UNKNOWN
     assert evaluate(b("or", ast.Name("area", S), n(1)), ns) is UNKNOWN
     assert evaluate(b("and", ast.Name("false", S), ast.Name("area", S)), ns) is False
+
+
+@pytest.mark.parametrize("index,value,message", [
+    (0, float("inf"), "expected a finite number, got inf"),
+    (0, float("nan"), "expected a finite number"),
+    (0, 1e5, "is 1e+06 m; lengths are limited to 100,000 m"),
+    (1, 1e12, "m²; lengths are limited to 100,000 m"),
+])
+def test_non_finite_and_absurd_lengths_are_refused(index, value, message):
+    values = list(GOOD)
+    values[index] = value
+    with pytest.raises(DerivationError) as info:
+        bind(*values)
+    assert message in str(info.value)
