@@ -30,6 +30,7 @@ Derivation (DESIGN §4):
 
 from __future__ import annotations
 
+import math
 import time
 from collections import defaultdict
 from collections.abc import Callable, Iterator, Mapping
@@ -473,8 +474,8 @@ class Evaluator:
             if isinstance(value, bool) or not isinstance(value, float):
                 raise DerivationError(f"a split size must be a number, got {describe(value)}",
                                       part.size.span)
-            if value < 0:
-                raise DerivationError(f"a split size must not be negative, got "
+            if not 0 <= value < math.inf:
+                raise DerivationError(f"a split size must be a finite number ≥ 0, got "
                                       f"{describe(value)}", part.size.span)
             size = value if part.mode == "relative" else value * self.units
             parts.append((part.mode, size, index))

@@ -16,7 +16,7 @@ from cga.errors import DerivationError
 from cga.shape import Shape
 
 from .base import Child, Operation, OperationContext, Param
-from .slicing import cut, extent
+from .slicing import check_piece_count, cut, extent
 
 __all__ = ["RepeatedSplit", "slice_count"]
 
@@ -42,6 +42,8 @@ class RepeatedSplit(Operation):
             raise DerivationError(f"repeated_split size must be positive, got {size / ctx.units:g}")
         total = extent(shape, axis)
         n = slice_count(total, size)
+        check_piece_count(n, f"repeated_split size {size / ctx.units:g} on an extent of "
+                             f"{total / ctx.units:g}")
         bounds = [total * i / n for i in range(n)] + [total]
         pieces = cut(shape, axis, list(zip(bounds[:-1], bounds[1:])))
         last = ctx.successor_count - 1

@@ -26,11 +26,29 @@ from cga.shape import Face, Geometry, Mass, Scope, Shape
 
 from .faces import face_from_polygon, face_polygon
 
-__all__ = ["AXIS_INDEX", "extent", "polygons_of", "cut"]
+__all__ = ["AXIS_INDEX", "MAX_PIECES", "extent", "check_piece_count", "polygons_of", "cut"]
 
 AXIS_INDEX = {"x": 0, "y": 1, "z": 2}
 
 _MIN_AREA = 1e-12
+
+MAX_PIECES = 10_000
+"""Most pieces one split may cut a shape into: a tiny size on a long extent would
+otherwise make millions of shapes and never finish."""
+
+
+def check_piece_count(count: int, what: str) -> None:
+    """Refuse a cut into more than :data:`MAX_PIECES` pieces.
+
+    Raises
+    ------
+    DerivationError
+        Naming ``what`` (the size asked for, e.g. ``"repeated_split size 0.001 m on
+        16 m"``) and the limit.
+    """
+    if count > MAX_PIECES:
+        raise DerivationError(f"{what} would make {count:,} pieces; at most "
+                              f"{MAX_PIECES:,} are allowed", hint="use a larger size")
 
 
 def extent(shape: Shape, axis: str) -> float:

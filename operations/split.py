@@ -29,7 +29,7 @@ from cga.errors import DerivationError
 from cga.shape import Shape
 
 from .base import Child, Operation, OperationContext, Param
-from .slicing import cut, extent
+from .slicing import check_piece_count, cut, extent
 
 __all__ = ["Split", "layout"]
 
@@ -82,6 +82,8 @@ def layout(total: float, parts: Sequence[tuple[str, float, int]], repeat: bool
                 count -= 1
         else:
             count = max(1, math.floor(total / pattern + _EPS))
+        check_piece_count(count * len(parts), f"a repeated split pattern of {pattern:g} m "
+                                              f"on an extent of {total:g} m")
     stretch = 0.0
     if floating > 0:
         stretch = max(0.0, total - count * fixed) / (count * floating)

@@ -247,3 +247,29 @@ def test_component_split_errors():
     with pytest.raises(DerivationError, match="needs a mass"):
         op.apply(face_shape(side), {"selector": "top"}, ctx())
     assert isinstance(side.geometry, Face)
+
+
+# -- limits ----------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("parts", [
+    [("floating", 1e-5, 0)],
+    [("absolute", 1e-5, 0)],
+    [("relative", 1e-7, 0)],
+])
+def test_a_repeated_pattern_making_millions_of_pieces_is_refused(parts):
+    with pytest.raises(DerivationError, match="would make .* pieces; at most 10,000"):
+        layout(24.0, parts, True)
+
+
+def test_repeated_split_making_millions_of_slices_is_refused():
+    with pytest.raises(DerivationError, match="repeated_split size 1e-05 .* at most 10,000"):
+        RepeatedSplit().apply(mass_shape(), {"axis": "y", "size": 1e-5}, ctx())
+
+
+def test_split_sizes_must_be_finite(tmp_path):
+    from cga.evaluator import derive
+    from cga.parser import parse
+
+    text = "Rules:\nLot --> extrude(10) M\nM --> split(\"y\"){ 1e300 * 1e300 : A }\n"
+    with pytest.raises(DerivationError, match="finite number ≥ 0, got inf"):
+        derive(parse(text, "g.grammar"), base_dir=tmp_path)
