@@ -73,8 +73,12 @@ class MakeFloor(Operation):
             raise DerivationError(f"min_room_area must not be negative, got {min_area / ctx.units ** 2:g}")
         rng = stream(ctx.seed, ("make_floor", shape.symbol)) if args["same_layout"] else ctx.rng
         index = int(shape.attrs.get("floor", 0))
-        result = partition(list(footprint.exterior.coords)[:-1], split, rng, min_width=min_width,
-                           min_area=min_area, cut_range=(lo, hi))
+        try:
+            result = partition(list(footprint.exterior.coords)[:-1], split, rng,
+                               min_width=min_width, min_area=min_area, cut_range=(lo, hi))
+        except ValueError as error:
+            raise DerivationError(f"make_floor cannot cut this footprint into rooms: {error}",
+                                  hint=_footprint_hint(footprint)) from None
         if result.shortfall is not None:
             ctx.report(Diagnostic("warning", "make_floor",
                                   f"made {len(result.dcel.faces)} rooms instead of {split + 1}: "
@@ -124,3 +128,11 @@ def _footprint(polygon: Polygon) -> Polygon:
     if not isinstance(clean, Polygon) or not clean.is_valid or clean.area <= 0:
         raise DerivationError("make_floor needs a simple, non-empty footprint polygon")
     return clean
+
+
+def _footprint_hint(footprint: Polygon) -> str:
+    """What the footprint is, for messages about footprints the partition refuses."""
+    minx, minz, maxx, maxz = footprint.bounds
+    return (f"the footprint is {maxx - minx:.4g} m x {maxz - minz:.4g} m with "
+            f"{len(footprint.exterior.coords) - 1} corners; give the storey a larger lot, "
+            f"without corners closer than a micrometre")

@@ -113,6 +113,9 @@ def test_l_shaped_storey_and_collinear_footprint_vertices():
     (storey(), {"cut_range": (0.6, 0.4)}, "cut_range"),
     (storey(), {"min_room_area": -1.0}, "min_room_area"),
     (storey(box(0, 0, 10, 10).difference(box(4, 4, 6, 6))), {}, "without holes"),
+    (storey(box(0, 0, 1e-9, 1e-9)), {}, "cannot cut this footprint into rooms"),
+    (storey(Polygon([(0, 0), (14, 0), (14, 10), (7.00000001, 10.5), (7, 10.5), (0, 10)])), {},
+     "cannot cut this footprint into rooms"),
 ])
 def test_user_mistakes_raise_derivation_errors(shape, kwargs, message):
     ctx, _ = context()
