@@ -25,11 +25,17 @@ from .furniture.passage import PASSAGE_WIDTH
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
 from .furniture.solver import furnish_plan
 
-__all__ = ["AddFurniture", "LIBRARY_CACHE_KEY", "furnish_floor"]
+__all__ = ["AddFurniture", "LIBRARY_CACHE_KEY", "MAX_STEERING_ITERATIONS", "furnish_floor"]
 
 LIBRARY_CACHE_KEY = "model_library"
 """Key of the build's :class:`~cga.operations.furniture.library.ModelLibrary` in
 :attr:`OperationContext.cache`."""
+
+
+MAX_STEERING_ITERATIONS = 10_000
+"""Most rounds of separation steering a grammar may ask for. Steering stops early once
+the items stop moving (usually within a few hundred rounds), but a layout that keeps
+oscillating would run every round, for every room and attempt."""
 
 
 class AddFurniture(Operation):
@@ -46,7 +52,8 @@ class AddFurniture(Operation):
         walls, windows and doors (``make_floor``/``type_rooms``), and the door leaves and
         window panes are sized to the openings themselves.
     steeringIterations:
-        Rounds of separation steering of the random start positions.
+        Rounds of separation steering of the random start positions (at most
+        :data:`MAX_STEERING_ITERATIONS`).
     clearanceTries:
         Attempts per room: while items are left out, the room is solved again from new
         random starts, keeping the layout that places the most items (stopping early
@@ -95,6 +102,11 @@ class AddFurniture(Operation):
             raise DerivationError(
                 f"passage_width must not be negative, got {args['passage_width'] / ctx.units:g}",
                 ctx.span, hint="use 0 to switch the passage rule off")
+        if args["steeringIterations"] > MAX_STEERING_ITERATIONS:
+            raise DerivationError(
+                f"steeringIterations must be at most {MAX_STEERING_ITERATIONS:,}, got "
+                f"{args['steeringIterations']:,}", ctx.span,
+                hint="steering settles within a few hundred rounds; 10 is the usual value")
         path = Path(ctx.resolve(args["rules"], "rules"))
         furnished = _furnish(plan, _rules(ctx, path), _library(ctx), ctx.rng, ctx.units,
                              args["steeringIterations"], args["clearanceTries"],

@@ -100,7 +100,8 @@ def separation_steering(positions: np.ndarray, radii: np.ndarray, movable: np.nd
 
     Notes
     -----
-    Each round costs O(n²) for n items, all items moving at once (numpy). Coincident
+    Each round costs O(n²) for n items, all items moving at once (numpy); steering stops
+    early at a fixed point (no item moves), which rounds after it would not change. Coincident
     items are pushed apart along a fixed, index-dependent direction, so the result is
     a pure function of the input.
 
@@ -138,5 +139,7 @@ def separation_steering(positions: np.ndarray, radii: np.ndarray, movable: np.nd
         proposal = np.clip(p + velocity, lo, hi)
         inside = shapely.contains_xy(polygon, proposal[:, 0], proposal[:, 1])
         take = movable & inside
+        if np.array_equal(p[take], proposal[take]):
+            break  # a fixed point: every further round would give the same positions
         p[take] = proposal[take]
     return p

@@ -139,3 +139,9 @@ def test_furnish_floor_for_rule_authors():
     assert result.furniture and result == furnish_floor(plan, "furniture_house.csv", seed=2)
     typed = {room.id for room in plan.rooms if room.type}
     assert {item.room for item in result.furniture if not item.is_detail} <= typed
+
+
+def test_absurd_steering_iterations_are_refused(tmp_path):
+    text = grammar('add_furniture("furniture_thesis.csv", 0.2>1.2>1.2, 0.9, 2.1, 1000000000)')
+    with pytest.raises(DerivationError, match="steeringIterations must be at most 10,000"):
+        furnished(tmp_path, text)

@@ -70,3 +70,12 @@ def test_steps_never_leave_a_non_rectangular_room():
     start = random_start(L_ROOM, half, rng)
     result = separation_steering(start, np.full(8, 1.0), np.ones(8, dtype=bool), L_ROOM, half, 40)
     assert shapely.contains_xy(L_ROOM, result[:, 0], result[:, 1]).all()
+
+
+def test_steering_stops_at_a_fixed_point_with_the_same_result():
+    room = box(0, 0, 6, 5)
+    start = np.array([[1.0, 1.0], [5.0, 4.0]])  # cohesion and separation settle to a fixed point
+    half = np.full((2, 2), 0.9)
+    few = separation_steering(start, np.full(2, 0.5), np.ones(2, bool), room, half, 300)
+    many = separation_steering(start, np.full(2, 0.5), np.ones(2, bool), room, half, 10**12)
+    assert np.array_equal(few, many)
