@@ -33,7 +33,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedTok
 from . import ast
 from .errors import CGAError, GrammarSyntaxError, ResourceNotFoundError, Span, UsageError
 
-__all__ = ["parse", "parse_file"]
+__all__ = ["parse", "parse_file", "read_grammar"]
 
 
 def parse(text: str, file: str = "<string>") -> ast.Grammar:
@@ -83,30 +83,46 @@ def parse(text: str, file: str = "<string>") -> ast.Grammar:
         raise error.with_source(text)
 
 
+def read_grammar(path: str | Path) -> str:
+    """The text of a ``.grammar`` file (UTF-8).
+
+    Raises
+    ------
+    ResourceNotFoundError
+        ``path`` does not exist or is a folder.
+    UsageError
+        The file cannot be read.
+    GrammarSyntaxError
+        The file is not UTF-8 text; the span is the first byte that cannot be decoded.
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise ResourceNotFoundError("grammar", f"{path} (a folder, not a grammar file)")
+    if not path.is_file():
+        raise ResourceNotFoundError("grammar", str(path), [str(path.resolve())])
+    try:
+        data = path.read_bytes()
+    except OSError as error:
+        raise UsageError(f"cannot read grammar file {path}: {error.strerror}") from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        column = error.start - (data.rfind(b"\n", 0, error.start) + 1) + 1
+        raise GrammarSyntaxError(
+            f"the file is not UTF-8 text (byte {error.start} cannot be decoded)",
+            Span(str(path), line, column), hint="save the grammar as UTF-8 text") from None
+
+
 def parse_file(path: str | Path) -> ast.Grammar:
     """Read and parse a ``.grammar`` file (UTF-8).
 
     Raises
     ------
-    ResourceNotFoundError
-        ``path`` does not exist or is not a file.
-    UsageError
-        The file exists but cannot be read.
-    GrammarSyntaxError
-        See :func:`parse`; spans name ``path`` as given.
+    ResourceNotFoundError, UsageError, GrammarSyntaxError
+        See :func:`read_grammar` and :func:`parse`; spans name ``path`` as given.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise ResourceNotFoundError("grammar file", str(path))
-    try:
-        text = path.read_text(encoding="utf-8")
-    except UnicodeDecodeError as error:
-        raise GrammarSyntaxError(
-            f"the file is not UTF-8 text (byte {error.start} cannot be decoded)",
-            hint="save the grammar as UTF-8") from None
-    except OSError as error:
-        raise UsageError(f"cannot read grammar file {path}: {error.strerror}") from None
-    return parse(text, str(path))
+    return parse(read_grammar(path), str(path))
 
 
 def _too_deep(file: str) -> GrammarSyntaxError:

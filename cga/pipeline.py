@@ -12,6 +12,7 @@ only when every exporter has succeeded (:func:`cga.fsutil.atomic_output_dir`).
 from __future__ import annotations
 
 import contextlib
+import math
 import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
@@ -19,7 +20,7 @@ from typing import Any
 
 from shapely.geometry import Polygon
 
-from .errors import NoSolutionError, ResourceNotFoundError, SourceError, UsageError
+from .errors import ExportError, NoSolutionError, SourceError, UsageError
 from .evaluator import DEFAULT_MAX_DEPTH, Evaluator
 from .scene import Scene, SceneNode
 
@@ -71,9 +72,9 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
                    max_depth: int) -> None:
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise UsageError(f"--seed must be a whole number ≥ 0, got {seed!r}")
-    if units is not None and not units > 0:
+    if units is not None and not 0 < units < math.inf:
         raise UsageError(f"--units must be positive (metres per grammar unit), got {units!r}")
-    if not robot_radius > 0:
+    if not 0 < robot_radius < math.inf:
         raise UsageError(f"--robot-radius must be positive (metres), got {robot_radius!r}")
     if max_depth < 1:
         raise UsageError(f"--max-depth must be at least 1, got {max_depth!r}")
@@ -116,15 +117,24 @@ def export_scene(scene: Scene, nodes: Sequence[SceneNode], out_dir: str | Path,
 
     Files named ``<scene name>.*`` left from an earlier build and not rewritten now are
     removed, so the folder describes this build only.
+
+    Raises
+    ------
+    ExportError
+        The folder cannot be created or written (a file of that name, no permission).
     """
     from .export import EXPORTERS
     from .fsutil import atomic_output_dir
 
     target = Path(out_dir)
     written: list[Path] = []
-    with atomic_output_dir(target, replace_matching=f"{scene.name}.*") as staging:
-        for fmt in dict.fromkeys(formats):
-            written.extend(EXPORTERS[fmt](scene, nodes, staging, scene.name))
+    try:
+        with atomic_output_dir(target, replace_matching=f"{scene.name}.*") as staging:
+            for fmt in dict.fromkeys(formats):
+                written.extend(EXPORTERS[fmt](scene, nodes, staging, scene.name))
+    except OSError as error:
+        raise ExportError(f"cannot write the output folder {target}: {error.strerror or error}"
+                          f"{f' ({error.filename})' if error.filename else ''}") from None
     return [target / path.relative_to(staging) for path in written]
 
 
@@ -175,16 +185,14 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         Any user error (syntax, derivation, rule table, missing file, bad option,
         strict failure); source errors carry the grammar text for their excerpt.
     """
+    from .parser import parse, read_grammar
+
     path = Path(grammar_path)
-    if not path.is_file():
-        raise ResourceNotFoundError("grammar", str(grammar_path), [str(path.resolve())])
+    text = read_grammar(path)
     _check_options(seed, units, robot_radius, formats, max_depth)
-    text = path.read_text(encoding="utf-8")
     timings: dict[str, float] = {}
     try:
         with _Progress(timings, quiet) as progress:
-            from .parser import parse
-
             with progress.stage("parse", f"parsing {path.name}…"):
                 grammar = parse(text, str(path))
             if lot is not None:

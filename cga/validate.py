@@ -133,15 +133,14 @@ def check_file(path: str | Path, *, operations: OperationRegistry | None = None
 
     Raises
     ------
-    ResourceNotFoundError
-        The file does not exist.
+    ResourceNotFoundError, UsageError, GrammarSyntaxError
+        The file does not exist, is a folder or unreadable, or is not UTF-8 text
+        (:func:`cga.parser.read_grammar`).
     """
-    from .parser import parse
+    from .parser import parse, read_grammar
 
     file = Path(path)
-    if not file.is_file():
-        raise ResourceNotFoundError("grammar", str(path), [str(file.resolve())])
-    text = file.read_text(encoding="utf-8")
+    text = read_grammar(file)
     try:
         problems = check_grammar(parse(text, str(file)), base_dir=file.parent,
                                  operations=operations)
