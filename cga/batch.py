@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Iterable
 
-from .errors import CGAError, UsageError
+from .errors import CGAError, ExportError, UsageError
 
 __all__ = ["BatchRecord", "BatchReport", "run_batch", "read_manifest", "seed_folder"]
 
@@ -198,12 +198,18 @@ def run_batch(grammar: str | Path, *, count: int, out_dir: str | Path, jobs: int
         raise UsageError(f"-n must be at least 1, got {count}")
     if jobs < 1:
         raise UsageError(f"--jobs must be at least 1, got {jobs}")
+    if seed_start < 0:
+        raise UsageError(f"--seed-start must be a whole number ≥ 0, got {seed_start}")
     grammar = str(Path(grammar).resolve())
     if not Path(grammar).is_file():
         from .errors import ResourceNotFoundError
         raise ResourceNotFoundError("grammar file", grammar)
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise ExportError(f"cannot create the output folder {out}: "
+                          f"{error.strerror or error}") from None
     for stale in out.glob(f"{_TMP_PREFIX}*"):
         shutil.rmtree(stale, ignore_errors=True)
     done = read_manifest(out)
