@@ -118,12 +118,18 @@ class Wall:
 
 @dataclass(frozen=True)
 class Room:
-    """A room: a face of the floor's DCEL. ``type`` is None until ``type_rooms`` runs."""
+    """A room: a face of the floor's DCEL. ``type`` is None until ``type_rooms`` runs;
+    ``circulation`` is set by ``make_floor`` for carved halls/corridors/stair cores and by
+    ``type_rooms`` for types the table marks as circulation."""
 
     id: int
     polygon: Polygon
     interior: Polygon
     type: str | None = None
+    circulation: bool = False
+    """True for space whose job is to connect (hall, corridor, landing, stair core:
+    DESIGN §11): drawn as circulation, never furnished as a private room, and where a
+    stair core may stand."""
 
     @property
     def area(self) -> float:
