@@ -17,7 +17,6 @@ from pathlib import Path
 
 from cga.pipeline import build
 from cga.checks import check_floor_navigability, check_physics
-from cga.meshing import scene_nodes
 
 PHYSICS_TARGET_S = 2.0
 FLOOR_TARGET_MS = 200.0
@@ -33,7 +32,7 @@ def main() -> None:
     physics, floors, items, passed_physics, passed_floors = [], [], [], 0, 0
     for seed in range(args.repeats):
         scene = build(args.grammar, seed=seed, formats=(), physics=False, quiet=True)
-        nodes = scene_nodes(scene)
+        nodes = scene.nodes
         started = time.perf_counter()
         report = check_physics(scene, nodes)
         physics.append(time.perf_counter() - started)

@@ -19,7 +19,7 @@ from shapely.geometry import box
 
 from cga.model import Opening
 from cga.operations.base import OperationContext
-from cga.operations.floorplan.solids import floor_nodes
+from cga.meshing.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape
 

@@ -46,9 +46,9 @@ def shrink_part(vertices: np.ndarray, by: float = CONTACT_SHRINK) -> np.ndarray:
 def collision_parts(node: "SceneNode", cache_dir: Path | None = None) -> list["trimesh.Trimesh"]:
     """An item's convex collision parts: its model's parts, or a V-HACD decomposition
     (cached on disk, :mod:`cga.checks.vhacd`) when it has none or its model says they
-    are not convex (``extras["convex_parts"]`` False, e.g. a user's single-group OBJ)."""
+    are not convex (``ItemInfo.convex_parts`` False, e.g. a user's single-group OBJ)."""
     parts = [p for p in node.parts if len(p.faces)]
-    if parts and node.extras.get("convex_parts", True):
+    if parts and node.convex_parts:
         return parts
     from cga.checks.vhacd import convex_decomposition  # pybullet only when needed
 

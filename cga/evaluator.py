@@ -36,7 +36,7 @@ from collections import defaultdict
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from shapely.geometry import Polygon
@@ -52,6 +52,9 @@ from .resources import resolve_resource
 from .shape import Mass, Shape
 from cga.operations import OperationRegistry, UnknownOperation
 from cga.operations.base import Child, Operation, OperationContext
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cga.operations.furniture.library import ModelLibrary
 
 __all__ = [
     "DEFAULT_MAX_DEPTH",
@@ -320,12 +323,15 @@ class Evaluator:
         grammar file's folder).
     strict:
         Passed to operations (``OperationContext.strict``): fail instead of repairing.
+    library:
+        The furniture model library operations use (``OperationContext.library``);
+        default: the grammar's folder and its ``models/``, then the shipped models.
     """
 
     def __init__(self, grammar: ast.Grammar, *, seed: int = 0, units: float | None = None,
                  operations: OperationRegistry | None = None,
                  max_depth: int = DEFAULT_MAX_DEPTH, base_dir: str | Path | None = None,
-                 strict: bool = False):
+                 strict: bool = False, library: ModelLibrary | None = None):
         if seed < 0:
             raise ValueError(f"seed must be non-negative, got {seed}")
         if max_depth < 1:
@@ -340,6 +346,12 @@ class Evaluator:
         self.base_dir = Path(base_dir) if base_dir is not None else Path(grammar.file).parent
         self.strict = strict
         self.rules = index_rules(grammar)
+        if library is None:
+            # imported here: `cga check` uses this module and needs no model files
+            from cga.operations.furniture.library import default_library
+
+            library = default_library([self.base_dir, self.base_dir / "models"])
+        self.library = library
 
     # -- public -----------------------------------------------------------------------
 
@@ -430,7 +442,8 @@ class Evaluator:
         ctx = OperationContext(
             rng=rng, units=self.units, resolve=self._resolver(call),
             report=run.diagnostics.append, span=call.span, successor_count=len(successors),
-            cache=run.cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir)
+            cache=run.cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir,
+            library=self.library)
         started = time.perf_counter()
         try:
             children = operation.apply(shape, args, ctx)

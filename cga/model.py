@@ -21,7 +21,7 @@ Frames and conventions (DESIGN §3):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -103,6 +103,56 @@ class Wall:
     def direction(self) -> np.ndarray:
         d = np.subtract(self.end, self.start)
         return d / np.linalg.norm(d)
+
+    @property
+    def normal(self) -> np.ndarray:
+        """The unit normal to the left of ``start``→``end``: it points into ``rooms[0]``."""
+        d = self.direction
+        return np.array([-d[1], d[0]])
+
+    def normal_into(self, room: int) -> np.ndarray:
+        """The unit normal pointing from the wall line into ``room`` (one of
+        :attr:`rooms`; :data:`OUTSIDE` gives the outward normal of an outer wall).
+
+        Raises
+        ------
+        ValueError
+            ``room`` is not on either side of this wall.
+        """
+        return self.normal if self._on_left(room) else -self.normal
+
+    def _on_left(self, room: int) -> bool:
+        if room not in self.rooms:
+            raise ValueError(f"room {room} is not beside wall {self.id} (rooms {self.rooms})")
+        return room == self.rooms[0]
+
+    def band(self) -> tuple[float, float]:
+        """Where the wall's solid lies across its line: offsets ``(lo, hi)`` along
+        :attr:`normal`.
+
+        An inner wall is centred on its line, ``(-t/2, t/2)``; an outer wall lies wholly
+        on its room's side of the footprint boundary: ``(0, t)`` with the room on the
+        left, ``(-t, 0)`` with it on the right.
+        """
+        t = self.thickness
+        if not self.outer:
+            return (-t / 2, t / 2)
+        return (0.0, t) if self.rooms[1] == OUTSIDE else (-t, 0.0)
+
+    def face_offset(self, room: int) -> float:
+        """Distance from the wall line to the wall's face on ``room``'s side (0 on the
+        outside of an outer wall); raises ValueError like :meth:`normal_into`."""
+        lo, hi = self.band()
+        return hi if self._on_left(room) else -lo
+
+    def band_corners(self, before: float = 0.0, after: float = 0.0) -> np.ndarray:
+        """The 4×2 corners of the wall's solid strip (:meth:`band` across), reaching
+        ``before`` metres past ``start`` and ``after`` metres past ``end``."""
+        d, n = self.direction, self.normal
+        a = np.asarray(self.start) - d * before
+        b = np.asarray(self.end) + d * after
+        lo, hi = self.band()
+        return np.array([a + n * lo, b + n * lo, b + n * hi, a + n * hi])
 
     def point_at(self, distance: float) -> tuple[float, float]:
         """The point ``distance`` metres from ``start`` along the segment."""

@@ -22,7 +22,7 @@ from shapely.geometry import Polygon
 
 from .errors import ExportError, NoSolutionError, SourceError, UsageError
 from .evaluator import DEFAULT_MAX_DEPTH, Evaluator
-from .scene import Scene, SceneNode
+from .scene import Scene
 
 __all__ = ["STAGES", "build", "default_out_dir", "run_checks", "export_scene"]
 
@@ -87,33 +87,33 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
                              f"{', '.join(unknown)}; available: {', '.join(EXPORTERS)}")
 
 
-def run_checks(scene: Scene, nodes: Sequence[SceneNode], *, robot_radius: float = 0.25) -> None:
-    """Run the physics and navigability checks into ``scene.checks`` (floors only).
+def run_checks(scene: Scene, *, robot_radius: float = 0.25) -> None:
+    """Run the physics and navigability checks on ``scene.nodes`` into ``scene.checks``
+    (floors only).
 
     Each entry is the check's report as a dict (``passed`` plus details) with its
     one-line ``summary``; their times go to ``scene.timings``.
     """
-    _run_checks(scene, nodes, robot_radius, _Progress(scene.timings, quiet=True))
+    _run_checks(scene, robot_radius, _Progress(scene.timings, quiet=True))
 
 
-def _run_checks(scene: Scene, nodes: Sequence[SceneNode], robot_radius: float,
-                progress: _Progress) -> None:
+def _run_checks(scene: Scene, robot_radius: float, progress: _Progress) -> None:
     if not scene.floors:
         return
     from .checks.navigability import check_navigability
     from .checks.physics import check_physics
 
     with progress.stage("physics", "physics check (settling furniture)…"):
-        report = check_physics(scene, nodes)
+        report = check_physics(scene)
     scene.checks["physics"] = {**report.to_dict(), "summary": report.summary()}
     with progress.stage("navigability", "navigability check…"):
-        reach = check_navigability(scene, nodes, radius=robot_radius)
+        reach = check_navigability(scene, radius=robot_radius)
     scene.checks["navigability"] = {**reach.to_dict(), "summary": reach.summary()}
 
 
-def export_scene(scene: Scene, nodes: Sequence[SceneNode], out_dir: str | Path,
-                 formats: Sequence[str]) -> list[Path]:
-    """Write ``formats`` into ``out_dir`` all-or-nothing; returns the written files.
+def export_scene(scene: Scene, out_dir: str | Path, formats: Sequence[str]) -> list[Path]:
+    """Write ``formats`` of ``scene.nodes`` into ``out_dir`` all-or-nothing; returns the
+    written files.
 
     Files named ``<scene name>.*`` left from an earlier build and not rewritten now are
     removed, so the folder describes this build only.
@@ -131,7 +131,7 @@ def export_scene(scene: Scene, nodes: Sequence[SceneNode], out_dir: str | Path,
     try:
         with atomic_output_dir(target, replace_matching=f"{scene.name}.*") as staging:
             for fmt in dict.fromkeys(formats):
-                written.extend(EXPORTERS[fmt](scene, nodes, staging, scene.name))
+                written.extend(EXPORTERS[fmt](scene, scene.nodes, staging, scene.name))
     except OSError as error:
         raise ExportError(f"cannot write the output folder {target}: {error.strerror or error}"
                           f"{f' ({error.filename})' if error.filename else ''}") from None
@@ -185,6 +185,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         Any user error (syntax, derivation, rule table, missing file, bad option,
         strict failure); source errors carry the grammar text for their excerpt.
     """
+    from .operations.furniture.library import default_library, grammar_model_dirs
     from .parser import parse, read_grammar
 
     path = Path(grammar_path)
@@ -199,27 +200,29 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                 from .lot import parse_lot, validate_lot
 
                 lot = parse_lot(lot) if isinstance(lot, str) else validate_lot(lot, "lot")
+            # one model library per build: add_furniture sizes items with it, the
+            # meshing layer poses the same loaded models
+            library = default_library(grammar_model_dirs(path))
             with progress.stage("derive", "deriving the shape tree…"):
                 derivation = Evaluator(grammar, seed=seed, units=units, operations=operations,
                                        max_depth=max_depth, base_dir=path.parent,
-                                       strict=strict).derive(lot)
+                                       strict=strict, library=library).derive(lot)
             timings.update(derivation.timings)
             scene = Scene(name=path.stem, seed=seed, units=derivation.units,
                           terminals=derivation.terminals, source=path,
-                          diagnostics=list(derivation.diagnostics), timings=timings)
-            from .meshing import scene_nodes
-
+                          diagnostics=list(derivation.diagnostics), timings=timings,
+                          library=library)
             with progress.stage("meshing", "meshing…"):
-                nodes = scene_nodes(scene)
+                scene.nodes  # noqa: B018 - made once here, timed; checks and exporters reuse them
             if physics:
-                _run_checks(scene, nodes, robot_radius, progress)
+                _run_checks(scene, robot_radius, progress)
             failed = [c for c in scene.checks.values() if not c.get("passed", True)]
             if strict and failed:
                 raise NoSolutionError("strict mode: the build does not pass its checks",
                                       [c.get("summary", "") for c in failed])
             if formats:
                 with progress.stage("export", "writing files…"):
-                    export_scene(scene, nodes, out_dir or default_out_dir(scene.name), formats)
+                    export_scene(scene, out_dir or default_out_dir(scene.name), formats)
     except SourceError as error:
         if error.span is not None and error.span.file == str(path):
             error.with_source(text)

@@ -10,12 +10,50 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, Literal
 
 from .model import Diagnostic, FloorPlan
 from .shape import Shape
 
-__all__ = ["Scene", "SceneNode"]
+if TYPE_CHECKING:  # pragma: no cover
+    import trimesh
+
+    from cga.operations.furniture.library import ModelLibrary
+
+__all__ = ["ItemInfo", "NodeKind", "Scene", "SceneNode"]
+
+NodeKind = Literal["wall", "slab", "ceiling", "furniture", "mass", "face"]
+"""What a scene node is; exporters colour and label by it."""
+
+
+@dataclass(frozen=True)
+class ItemInfo:
+    """The facts about a furniture item that the checks and exporters need beside its mesh.
+
+    ``model`` is the model's canonical name and ``model_path`` the OBJ file it was loaded
+    from; ``room``, ``name``, ``parent`` and ``rotation`` (quarter turns about +y) come
+    from the plan's :class:`~cga.model.FurnitureItem`; ``density`` (kg/m³) from the model
+    file and ``mass`` (kg) is the posed parts' volume × density. ``convex_parts`` is False
+    when some part of the model is not a closed convex solid (physics then decomposes the
+    mesh itself).
+    """
+
+    model: str
+    model_path: Path
+    room: int
+    name: str
+    parent: str | None
+    rotation: int
+    density: float
+    mass: float
+    convex_parts: bool
+
+    def labels(self) -> dict[str, Any]:
+        """The semantic labels stored with the item's glTF node (JSON values; the model
+        file's path is left out, so files do not depend on where models are installed)."""
+        return {"model": self.model, "room": self.room, "name": self.name,
+                "parent": self.parent, "rotation": self.rotation, "density": self.density,
+                "mass": self.mass, "convex_parts": self.convex_parts}
 
 
 @dataclass(frozen=True)
@@ -23,17 +61,30 @@ class SceneNode:
     """A named piece of output geometry, in world coordinates (metres, y up).
 
     ``path`` is the semantic node name, e.g. ``floor1/room3_Kitchen/wall2`` or
-    ``floor0/room1_Livingroom/furniture/sofa``. ``kind`` is one of ``wall``, ``slab``,
-    ``ceiling``, ``furniture``, ``mass``, ``face``. ``parts`` are the convex pieces of a
+    ``floor0/room1_Livingroom/furniture/sofa``. ``parts`` are the convex pieces of a
     furniture item (physics uses them as a compound body); ``static`` bodies do not move.
+    ``item`` describes a furniture node (None for every other kind); ``extras`` are the
+    labels of the other kinds (wall id, floor, shape path, ...), written to the glTF as
+    they are.
     """
 
     path: str
-    kind: str
-    mesh: Any  # trimesh.Trimesh
+    kind: NodeKind
+    mesh: "trimesh.Trimesh"
     extras: dict[str, Any] = field(default_factory=dict)
     static: bool = True
-    parts: tuple[Any, ...] = ()
+    parts: tuple["trimesh.Trimesh", ...] = ()
+    item: ItemInfo | None = None
+
+    @property
+    def labels(self) -> dict[str, Any]:
+        """Every semantic label of the node: its extras and, for an item, its facts."""
+        return {**self.extras, **self.item.labels()} if self.item is not None else self.extras
+
+    @property
+    def convex_parts(self) -> bool:
+        """Whether ``parts`` are convex solids a physics engine can use as they are."""
+        return self.item is None or self.item.convex_parts
 
 
 @dataclass
@@ -42,7 +93,9 @@ class Scene:
 
     ``terminals`` are the leaves of the shape tree in derivation order; those with a
     ``plan`` are storeys, the rest plain geometry. ``checks`` is filled by the physics
-    and navigability checks; ``timings`` maps stage name → seconds.
+    and navigability checks; ``timings`` maps stage name → seconds. ``library`` is the
+    build's furniture model library (the one ``add_furniture`` sized items with); the
+    meshing layer poses its models. :attr:`nodes` are the build's meshes, made once.
     """
 
     name: str
@@ -53,6 +106,18 @@ class Scene:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
     checks: dict[str, Any] = field(default_factory=dict)
+    library: "ModelLibrary | None" = None
+    _nodes: tuple[SceneNode, ...] | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def nodes(self) -> tuple[SceneNode, ...]:
+        """Every mesh of the build (:func:`cga.meshing.scene_nodes`), made on first use and
+        kept: the checks and every exporter read these same nodes."""
+        if self._nodes is None:
+            from .meshing import scene_nodes
+
+            self._nodes = tuple(scene_nodes(self))
+        return self._nodes
 
     @property
     def floors(self) -> list[FloorPlan]:

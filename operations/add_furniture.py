@@ -182,8 +182,11 @@ def _rules(ctx: OperationContext, path: Path) -> FurnitureRules:
 
 
 def _library(ctx: OperationContext) -> ModelLibrary:
-    """The build's model library: the grammar's folder and its ``models/``, then the
-    shipped models; created on first use and shared through ``ctx.cache``."""
+    """The build's model library (``ctx.library``); a hand-made context without one gets
+    the grammar's folder and its ``models/``, then the shipped models, created on first
+    use and shared through ``ctx.cache``."""
+    if ctx.library is not None:
+        return ctx.library
     library = ctx.cache.get(LIBRARY_CACHE_KEY)
     if library is None:
         extra = [ctx.base_dir, ctx.base_dir / "models"] if ctx.base_dir is not None else []

@@ -31,6 +31,7 @@ from cga.shape import Geometry, Scope
 
 if TYPE_CHECKING:  # pragma: no cover
     from cga.model import FloorPlan
+    from cga.operations.furniture.library import ModelLibrary
     from cga.shape import Shape
 
 __all__ = ["REQUIRED", "Param", "Child", "OperationContext", "Operation"]
@@ -89,7 +90,10 @@ class OperationContext:
     (``make_floor(..., same_layout=true)``). ``strict`` is the build's strict mode: an
     operation that would repair a problem and report it (e.g. add a door so every room
     is reachable) fails instead. ``base_dir`` is the grammar's folder (None when the
-    grammar has no file), where a grammar keeps its own furniture models.
+    grammar has no file), where a grammar keeps its own furniture models. ``library`` is
+    the build's furniture model library, shared with the meshing layer so each model is
+    loaded once per build (None in a hand-made context: ``add_furniture`` then makes one
+    from ``base_dir``).
     """
 
     rng: np.random.Generator
@@ -102,6 +106,7 @@ class OperationContext:
     seed: int = 0
     strict: bool = False
     base_dir: Path | None = None
+    library: "ModelLibrary | None" = None
 
 
 class Operation:

@@ -5,7 +5,7 @@ cut by a randomised BSP over a half-edge structure into ``split + 1`` rooms, out
 get their windows, and the shape passes on unchanged with a
 :class:`cga.model.FloorPlan` attached. Doors come later (``type_rooms``), and the 3D
 walls and slabs are made from the final plan at meshing time
-(:func:`cga.operations.floorplan.solids.floor_nodes`).
+(:func:`cga.meshing.solids.floor_nodes`).
 """
 
 from __future__ import annotations

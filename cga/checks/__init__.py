@@ -4,8 +4,8 @@
 * :func:`check_navigability`: every room reachable from the front door by a round robot
   (occupancy grid per floor, :func:`occupancy_grid`, also used for ROS maps).
 
-Both take a :class:`cga.scene.Scene` and, optionally, its scene nodes; without them the
-nodes are computed with :func:`cga.meshing.scene_nodes`. Their reports have ``passed``
+Both take a :class:`cga.scene.Scene` and check its nodes (``scene.nodes``, meshed once
+per scene) or the nodes passed to them. Their reports have ``passed``
 and ``to_dict()`` for the scene file's ``checks`` section. See ``docs/checks.md``.
 """
 

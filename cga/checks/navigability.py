@@ -195,7 +195,8 @@ def check_navigability(scene: Scene, nodes: Sequence[SceneNode] | None = None, *
     scene
         The built scene (its floor plans give rooms, doors and footprints).
     nodes
-        Its scene nodes; computed with :func:`cga.meshing.scene_nodes` when omitted.
+        The nodes to check; default ``scene.nodes``, the build's own meshes (made once
+        per scene).
     radius
         Robot radius (m); obstacles are grown by it.
     resolution
@@ -223,8 +224,7 @@ def check_navigability(scene: Scene, nodes: Sequence[SceneNode] | None = None, *
     if not radius > 0:
         raise ValueError(f"check_navigability: radius must be positive, got {radius!r}")
     if nodes is None:
-        from cga.meshing import scene_nodes  # noqa: PLC0415 - optional heavy dependency
-        nodes = scene_nodes(scene)
+        nodes = scene.nodes
     floors = tuple(check_floor_navigability(plan, nodes, radius=radius, resolution=resolution,
                                             band=band) for plan in scene.floors)
     return NavigabilityReport(floors=floors, radius=radius, resolution=resolution, band=band)
@@ -523,7 +523,7 @@ class _FloorCheck:
         any cell of ``mask``."""
         out = []
         for obstacle in self.furniture:
-            if room_id is not None and obstacle.extras.get("room", room_id) != room_id:
+            if room_id is not None and obstacle.room not in (None, room_id):
                 continue
             cells = self._item_masks.get(obstacle.path)
             if cells is None:

@@ -35,7 +35,7 @@ from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
 from cga.model import FloorPlan
-from cga.scene import SceneNode
+from cga.scene import NodeKind, SceneNode
 
 from ._solids import as_manifold
 
@@ -61,9 +61,10 @@ class Obstacle:
     """One scene node's shadow in the band: ``footprint`` in plan ``(x, z)`` metres."""
 
     path: str
-    kind: str
+    kind: NodeKind
     footprint: BaseGeometry
-    extras: dict
+    room: int | None = None
+    """The room a furniture item stands in (None for the structure)."""
 
 
 @dataclass(frozen=True)
@@ -163,7 +164,7 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     lo, hi = node.mesh.bounds
     if hi[1] <= y0 or lo[1] >= y1:
         return Polygon()
-    if node.parts and node.extras.get("convex_parts", True):
+    if node.parts and node.convex_parts:
         shadows = [_convex_shadow(part, y0, y1) for part in node.parts if len(part.faces)]
         return shapely.union_all([s for s in shadows if not s.is_empty])
     solid = as_manifold(node.mesh)
@@ -291,7 +292,8 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
         footprint = band_footprint(node, y0, y1)
         if footprint.is_empty:
             continue
-        obstacles.append(Obstacle(node.path, node.kind, footprint, dict(node.extras)))
+        obstacles.append(Obstacle(node.path, node.kind, footprint,
+                                  node.item.room if node.item is not None else None))
         _paint(occupied, footprint, x_min, z_min, resolution)
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
                          resolution=resolution, floor=plan.index, band=(y0, y1),

@@ -249,8 +249,8 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
     scene
         The built scene.
     nodes
-        Its scene nodes (world-space meshes); computed with
-        :func:`cga.meshing.scene_nodes` when omitted.
+        The nodes to check (world-space meshes); default ``scene.nodes``, the build's
+        own meshes (made once per scene).
     settle_seconds
         Simulated time to let the items settle (stops early once all rest).
     penetration_tol, move_tol, rot_tol_deg
@@ -288,8 +288,7 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
             raise ValueError(f"check_physics: {label} must be positive, got {value!r}")
     started = time.perf_counter()
     if nodes is None:
-        from cga.meshing import scene_nodes  # noqa: PLC0415 - optional heavy dependency
-        nodes = scene_nodes(scene)
+        nodes = scene.nodes
     structure = [n for n in structure_nodes(nodes) if len(n.mesh.faces)]
     items = item_nodes(nodes)
     for node in items:
@@ -482,11 +481,12 @@ def _shrunk(part: trimesh.Trimesh) -> trimesh.Trimesh:
 
 
 def _mass(node: SceneNode, volume: float) -> float:
-    """The item's mass (kg): ``extras["mass"]``, else density × volume."""
-    mass = node.extras.get("mass")
-    if mass is not None and float(mass) > 0:
-        return float(mass)
-    density = float(node.extras.get("density") or DEFAULT_DENSITY)
+    """The item's mass (kg): its :class:`~cga.scene.ItemInfo` mass, else density (the
+    model's, or :data:`DEFAULT_DENSITY` for a node without item facts) × volume."""
+    item = node.item
+    if item is not None and item.mass > 0:
+        return item.mass
+    density = item.density if item is not None and item.density > 0 else DEFAULT_DENSITY
     return max(density * volume, 1e-3)
 
 
@@ -518,12 +518,12 @@ def _item_result(node: SceneNode, body: _Body, world: _World, support: float | N
         problems.append(f"moved {displacement * 100:.1f} cm (limit {move_tol * 100:g} cm)")
     if rotation > rot_tol_deg:
         problems.append(f"turned {rotation:.1f}° (limit {rot_tol_deg:g}°)")
-    room = node.extras.get("room")
+    item = node.item
     return ItemPhysics(
         path=node.path,
-        name=str(node.extras.get("name", node.path.rsplit("/", 1)[-1])),
-        model=str(node.extras.get("model", "")),
-        room=int(room) if room is not None else None,
+        name=item.name if item is not None else node.path.rsplit("/", 1)[-1],
+        model=item.model if item is not None else "",
+        room=item.room if item is not None else None,
         mass=body.mass,
         penetration=depth,
         penetrating=other,

@@ -141,7 +141,8 @@ def trimesh_bounds(meshes: Sequence[Any]) -> np.ndarray:
 
 
 def _item_body(node: SceneNode, name: str) -> RobotBody:
-    turns = int(node.extras.get("rotation", 0)) % 4
+    item = node.item
+    turns = item.rotation % 4 if item is not None else 0
     parts = collision_parts(node) if not node.static else (node.parts or (node.mesh,))
     pose = pose_to_ros(centre_of_mass(parts), 90.0 * turns)
     # link frame: the ROS axes turned by the yaw, origin at the centre of mass; a ROS
@@ -153,7 +154,7 @@ def _item_body(node: SceneNode, name: str) -> RobotBody:
     def local(mesh) -> np.ndarray:
         return (world_to_ros(mesh.vertices) - origin) @ yaw
 
-    label = _identifier(str(node.extras.get("model", "item")))
+    label = _identifier(item.model if item is not None else "item")
     material, color = node_material(node)
     visual = (MeshGroup(label, local(node.mesh), np.asarray(node.mesh.faces), material,
                         vertex_colors(node.mesh)),)
@@ -161,11 +162,10 @@ def _item_body(node: SceneNode, name: str) -> RobotBody:
         return RobotBody(name=name, node=node.path, label=label, pose=pose, visual=visual,
                          materials={material: color}, collisions=(), mass=0.0,
                          inertia=(0.0, 0.0, 0.0), static=True, concave=False, color=color)
-    mass = float(node.extras.get("mass", 0.0))
+    mass = item.mass if item is not None else 0.0
     if not mass > 0.0:
-        raise ExportError(f"furniture node '{node.path}' has no positive 'mass' extra "
-                          f"(got {node.extras.get('mass')!r}); robot exports need the "
-                          f"mass of every movable item")
+        raise ExportError(f"furniture node '{node.path}' has no positive mass "
+                          f"(got {mass!r}); robot exports need the mass of every movable item")
     solids = [local(p) for p in parts]
     collisions = tuple(MeshGroup(f"{label}_part{k}", shrink_part(v),
                                  np.asarray(p.faces), material)
@@ -211,7 +211,7 @@ def robot_bodies(scene: Scene, nodes: Sequence[SceneNode]) -> tuple[RobotBody, l
     building = RobotBody(
         name="building", node=None, label="building", pose=RosPose((0.0, 0.0, 0.0), 0.0),
         visual=tuple(groups), materials=materials, collisions=(merged,), mass=0.0,
-        inertia=(0.0, 0.0, 0.0), static=True, concave=True, color=node_color("wall", {}))
+        inertia=(0.0, 0.0, 0.0), static=True, concave=True, color=node_color("wall"))
     furniture = [n for n in nodes if n.kind == "furniture" and len(n.mesh.faces)]
     names = _unique([_identifier(n.path.replace("/furniture/", "/")) for n in furniture])
     return building, [_item_body(n, name) for n, name in zip(furniture, names)]

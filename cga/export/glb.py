@@ -63,7 +63,7 @@ def _export_mesh(node: SceneNode) -> Any:
     source = node.mesh
     visual = source.visual
     if visual.kind is None:
-        r, g, b = node_color(node.kind, node.extras)
+        r, g, b = node_color(node.kind)
         material = PBRMaterial(name=node.kind, baseColorFactor=[r, g, b, 1.0],
                                metallicFactor=0.0, roughnessFactor=0.9)
         visual = trimesh.visual.TextureVisuals(material=material)
@@ -90,7 +90,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
             raise ExportError(f"two scene nodes are both named {node.path!r}")
         seen.add(node.path)
         try:
-            extras = json_safe({**node.extras, "kind": node.kind, "static": node.static})
+            extras = json_safe({**node.labels, "kind": node.kind, "static": node.static})
         except TypeError as error:
             raise ExportError(f"node {node.path!r}: {error}") from None
         tm_scene.add_geometry(_export_mesh(node), node_name=node.path, geom_name=node.path,

@@ -102,17 +102,14 @@ def vertex_colors(mesh: Any) -> np.ndarray | None:
 
 def node_material(node: SceneNode) -> tuple[str, RGB]:
     """A node's material, returned as ``(name, colour)``: a furniture item with its own
-    colour (a ``color`` extra, else the mean of its vertex colours) gets one per model,
-    everything else one per node kind (:func:`cga.export.palette.node_color`)."""
+    colours (the mean of its vertex colours) gets one per model, everything else one per
+    node kind (:func:`cga.export.palette.node_color`)."""
     colors = vertex_colors(node.mesh)
-    if node.kind == "furniture" and ("color" in node.extras or colors is not None):
-        if "color" in node.extras:
-            color = node_color(node.kind, node.extras)
-        else:
-            r, g, b = (float(c) for c in colors.mean(axis=0))
-            color = (r, g, b)
-        return _safe(f"furniture_{node.extras.get('model', 'item')}"), color
-    return _safe(node.kind), node_color(node.kind, node.extras)
+    if node.kind == "furniture" and colors is not None:
+        r, g, b = (float(c) for c in colors.mean(axis=0))
+        model = node.item.model if node.item is not None else "item"
+        return _safe(f"furniture_{model}"), (r, g, b)
+    return _safe(node.kind), node_color(node.kind)
 
 
 def node_groups(nodes: Sequence[SceneNode], transform: np.ndarray | None = None

@@ -10,8 +10,6 @@ from __future__ import annotations
 
 import colorsys
 import hashlib
-from collections.abc import Mapping
-from typing import Any
 
 __all__ = [
     "RGB",
@@ -81,13 +79,8 @@ def room_color(room_type: str | None) -> RGB:
     return colorsys.hls_to_rgb(hue, 0.86, 0.55)
 
 
-def node_color(kind: str, extras: Mapping[str, Any]) -> RGB:
-    """The display colour of a scene node: its ``color`` extra (three numbers 0..1) when
-    present, else the colour of its kind."""
-    given = extras.get("color")
-    if given is not None:
-        r, g, b = (float(c) for c in given)
-        return (r, g, b)
+def node_color(kind: str) -> RGB:
+    """The display colour of a scene node without colours of its own: its kind's."""
     return KIND_COLORS.get(kind, _OTHER_KIND_COLOR)
 
 

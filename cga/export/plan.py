@@ -34,7 +34,7 @@ from shapely.geometry.base import BaseGeometry
 from shapely.ops import polylabel, unary_union
 
 from cga.fsutil import atomic_write
-from cga.model import OUTSIDE, Door, FloorPlan, FurnitureItem, Room, Wall
+from cga.model import OUTSIDE, FloorPlan, FurnitureItem, Room, Wall
 from cga.scene import Scene, SceneNode
 
 from .drawing import (Arc, Area, Drawing, Point, Polyline, Style, Text, render_png, render_svg,
@@ -271,33 +271,15 @@ def _draw_room_labels(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
 
 # -- walls and openings -----------------------------------------------------------------
 
-@dataclass(frozen=True)
-class _Band:
-    """A wall's solid across its line: offsets ``lo`` < ``hi`` along ``normal``."""
-
-    normal: np.ndarray
-    lo: float
-    hi: float
-
-
-def _band(plan: FloorPlan, wall: Wall) -> _Band:
-    u = wall.direction
-    normal = np.array([-u[1], u[0]])
-    t = wall.thickness
-    if not wall.outer:
-        return _Band(normal, -t / 2, t / 2)
-    middle = (np.asarray(wall.start) + np.asarray(wall.end)) / 2
-    inside = plan.footprint.contains(ShapelyPoint(*(middle + normal * t / 2)))
-    return _Band(normal, 0.0, t) if inside else _Band(normal, -t, 0.0)
-
-
 def _along(wall: Wall, point: Sequence[float]) -> float:
     return float(np.dot(np.subtract(point, wall.start), wall.direction))
 
 
-def _rect(wall: Wall, band: _Band, s0: float, s1: float, lo: float, hi: float) -> Polygon:
-    start, u = np.asarray(wall.start), wall.direction
-    corners = [start + u * s + band.normal * o for s, o in ((s0, lo), (s1, lo), (s1, hi), (s0, hi))]
+def _rect(wall: Wall, s0: float, s1: float, lo: float, hi: float) -> Polygon:
+    """The part of the wall between ``s0`` and ``s1`` metres along it and offsets ``lo``
+    and ``hi`` across it (along :attr:`Wall.normal`)."""
+    start, u, n = np.asarray(wall.start), wall.direction, wall.normal
+    corners = [start + u * s + n * o for s, o in ((s0, lo), (s1, lo), (s1, hi), (s0, hi))]
     return Polygon(corners)
 
 
@@ -306,11 +288,11 @@ def _draw_walls(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
     solid = plan.footprint.difference(interiors)
     cuts = []
     for wall in plan.walls:
-        band = _band(plan, wall)
+        lo, hi = wall.band()
         for opening in wall.openings:
             half = opening.width / 2
-            cuts.append(_rect(wall, band, opening.center - half, opening.center + half,
-                              band.lo - 0.02, band.hi + 0.02))
+            cuts.append(_rect(wall, opening.center - half, opening.center + half,
+                              lo - 0.02, hi + 0.02))
     solid = solid.difference(unary_union(cuts)) if cuts else solid
     for rings in paper.areas(solid):
         drawing.add("walls", Area(rings, _WALL, css_class="wall"))
@@ -319,40 +301,29 @@ def _draw_walls(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
 def _draw_windows(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
     for window in plan.windows:
         wall = plan.wall(window.wall)
-        band = _band(plan, wall)
+        lo, hi = wall.band()
         s = _along(wall, window.position)
         s0, s1 = s - window.width / 2, s + window.width / 2
-        gap = _rect(wall, band, s0, s1, band.lo, band.hi)
+        gap = _rect(wall, s0, s1, lo, hi)
         drawing.add("windows", Area((paper.ring(gap.exterior.coords[:-1]),), _WINDOW_GAP,
                                     css_class="window"))
         for fraction in (0.38, 0.62):
-            o = band.lo + (band.hi - band.lo) * fraction
-            line = _rect(wall, band, s0, s1, o, o).exterior.coords[:2]
+            o = lo + (hi - lo) * fraction
+            line = _rect(wall, s0, s1, o, o).exterior.coords[:2]
             drawing.add("windows", Polyline(paper.ring(line), _GLASS, css_class="window-glass"))
-
-
-def _swing_side(plan: FloorPlan, wall: Wall, band: _Band, door: Door) -> int:
-    """+1 if the leaf swings to the ``band.normal`` side of the wall, else −1."""
-    probe = np.asarray(door.position) + band.normal * (band.hi + 0.3)
-    if door.swing_room == OUTSIDE:
-        on_plus = not plan.footprint.contains(ShapelyPoint(*probe))
-    else:
-        on_plus = plan.room(door.swing_room).polygon.contains(ShapelyPoint(*probe))
-    return 1 if on_plus else -1
 
 
 def _draw_doors(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
     for door in plan.doors:
         wall = plan.wall(door.wall)
-        band = _band(plan, wall)
-        side = _swing_side(plan, wall, band, door)
-        face = band.hi if side > 0 else band.lo
         s = _along(wall, door.position)
         hinge_s, free_s = ((s - door.width / 2, s + door.width / 2) if door.hinge == "start"
                            else (s + door.width / 2, s - door.width / 2))
-        start, u, n = np.asarray(wall.start), wall.direction, band.normal * side
-        hinge = start + u * hinge_s + band.normal * face
-        closed = start + u * free_s + band.normal * face
+        # the leaf lies on the face of the wall on the side it swings to
+        start, u = np.asarray(wall.start), wall.direction
+        n, face = wall.normal_into(door.swing_room), wall.face_offset(door.swing_room)
+        hinge = start + u * hinge_s + n * face
+        closed = start + u * free_s + n * face
         tip = hinge + n * door.width
         h, t, c = paper.point(*hinge), paper.point(*tip), paper.point(*closed)
         drawing.add("doors", Polyline((h, t), _LEAF, css_class="door-leaf"))
@@ -381,9 +352,7 @@ def _entrance_marker(plan: FloorPlan, scale: float) -> _Entrance | None:
     wall = plan.wall(door.wall)
     u = wall.direction
     position = np.asarray(door.position)
-    outward = np.array([-u[1], u[0]])
-    if plan.footprint.contains(ShapelyPoint(*(position + outward * 0.3))):
-        outward = -outward
+    outward = wall.normal_into(OUTSIDE)
     apex, base = position + outward * 0.25, position + outward * 0.75
     arrow = Polygon([apex, base + u * 0.3, base - u * 0.3])
     width = text_width(_ENTRANCE_TEXT, _ENTRANCE_SIZE, bold=True) / scale

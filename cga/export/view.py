@@ -64,7 +64,7 @@ def _cut(mesh: trimesh.Trimesh, height: float) -> trimesh.Trimesh | None:
 def _face_colors(node: SceneNode, mesh: trimesh.Trimesh) -> np.ndarray:
     if mesh.visual.kind is not None and len(mesh.visual.face_colors) == len(mesh.faces):
         return np.asarray(mesh.visual.face_colors[:, :3], dtype=float) / 255.0
-    return np.tile(node_color(node.kind, node.extras), (len(mesh.faces), 1))
+    return np.tile(node_color(node.kind), (len(mesh.faces), 1))
 
 
 def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):

@@ -2,8 +2,8 @@
 
 :mod:`.dcel` is the half-edge structure, :mod:`.bsp` cuts a footprint into rooms,
 :mod:`.assemble` turns the result into a :class:`cga.model.FloorPlan`, :mod:`.openings`
-places windows, :mod:`.rectangles` builds plans from hand-written rectangles (for rule
-tests) and :mod:`.solids` makes the 3D walls and slabs at meshing time.
+places windows and :mod:`.rectangles` builds plans from hand-written rectangles (for rule
+tests). The 3D walls and slabs are made from the final plan by :mod:`cga.meshing.solids`.
 """
 
 from .dcel import DCEL, Face, HalfEdge, Vertex

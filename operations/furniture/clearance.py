@@ -37,11 +37,10 @@ __all__ = [
     "half_extents",
     "Keepout",
     "door_keepouts",
+    "face_offset",
     "OpeningStrip",
     "window_strips",
     "door_strips",
-    "wall_side_normal",
-    "face_offset",
     "quarter_turn_towards",
 ]
 
@@ -50,9 +49,6 @@ Box = tuple[float, float, float, float]
 
 _ARC_SEGMENTS = 16
 """Polygon segments per quarter circle of a door's swing."""
-
-_PROBE = 1e-3
-"""How far off a wall line (m) a point is probed to tell which room lies on that side."""
 
 
 @dataclass(frozen=True)
@@ -114,24 +110,15 @@ def envelope(width: float, depth: float, rotation: int, *, front: float = 0.0,
     return tuple(parts)
 
 
-def wall_side_normal(plan: FloorPlan, wall: Wall, at: tuple[float, float],
-                     room_id: int) -> np.ndarray:
-    """The unit normal of ``wall`` pointing into ``room_id`` (or away from the other room
-    when ``room_id`` is :data:`OUTSIDE`), found by probing the room polygons at ``at``."""
-    d = wall.direction
-    normal = np.array([-d[1], d[0]])
-    probe = Point(*(np.asarray(at) + normal * _PROBE))
-    if room_id == OUTSIDE:
-        other = next(r for r in wall.rooms if r != OUTSIDE)
-        inside = not plan.room(other).polygon.covers(probe)
-    else:
-        inside = plan.room(room_id).polygon.covers(probe)
-    return normal if inside else -normal
-
-
 def face_offset(plan: FloorPlan, room_id: int, at: tuple[float, float]) -> float:
-    """Distance from a point on a wall line to the free floor of ``room_id`` (the wall's
-    solid on that side); 0 for :data:`OUTSIDE`."""
+    """Distance from a point on a wall line to the free floor of ``room_id``; 0 for
+    :data:`OUTSIDE`.
+
+    This is where furniture may start, measured on the room's ``interior`` (corners on
+    the micrometre grid) rather than on the wall band (:meth:`Wall.face_offset
+    <cga.model.Wall.face_offset>`), so keep-out zones and in-wall items meet the free
+    floor that placement tests against exactly.
+    """
     if room_id == OUTSIDE:
         return 0.0
     return float(plan.room(room_id).interior.distance(Point(at)))
@@ -164,7 +151,7 @@ def door_keepouts(plan: FloorPlan, room_id: int) -> list[Keepout]:
         wall = plan.wall(door.wall)
         centre = np.asarray(door.position, dtype=float)
         along = wall.direction
-        normal = wall_side_normal(plan, wall, door.position, room_id)
+        normal = wall.normal_into(room_id)
         face = centre + normal * face_offset(plan, room_id, door.position)
         label = f"door {door.id}"
         if door.swing_room == room_id:
@@ -203,7 +190,7 @@ class OpeningStrip:
 
 def _strip(plan: FloorPlan, label: str, wall: Wall, position: tuple[float, float],
            width: float, room_id: int) -> OpeningStrip:
-    normal = wall_side_normal(plan, wall, position, room_id)
+    normal = wall.normal_into(room_id)
     start = np.asarray(position) - wall.direction * width / 2
     return OpeningStrip(
         label=label,

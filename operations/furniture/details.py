@@ -15,7 +15,7 @@ import numpy as np
 
 from cga.model import OUTSIDE, FloorPlan, FurnitureItem, Wall
 
-from .clearance import face_offset, quarter_turn_towards, wall_side_normal
+from .clearance import face_offset, quarter_turn_towards
 from .rules import FurnitureRules
 
 __all__ = ["DEFAULT_DETAIL_MODELS", "detail_items", "detail_model"]
@@ -34,11 +34,10 @@ def detail_model(rules: FurnitureRules, kind: str, room_types: list[str | None])
     return DEFAULT_DETAIL_MODELS[kind]
 
 
-def _in_wall(plan: FloorPlan, wall: Wall, at: tuple[float, float], room: int,
-             other: int) -> tuple[tuple[float, float], float, int]:
+def _in_wall(plan: FloorPlan, wall: Wall, at: tuple[float, float], room: int, other: int) -> tuple[tuple[float, float], float, int]:
     """Centre, depth and rotation of an item filling the wall's thickness at ``at``, its
     front towards ``room``."""
-    normal = wall_side_normal(plan, wall, at, room)
+    normal = wall.normal_into(room)
     inner, outer = face_offset(plan, room, at), face_offset(plan, other, at)
     depth = inner + outer if inner + outer > 0 else wall.thickness
     centre = np.asarray(at) + normal * (inner - outer) / 2
@@ -67,8 +66,7 @@ def detail_items(plan: FloorPlan, rules: FurnitureRules) -> list[FurnitureItem]:
         room = door.swing_room if door.swing_room != OUTSIDE else next(
             r for r in door.rooms if r != OUTSIDE)
         other = next((r for r in door.rooms if r != room), OUTSIDE)
-        centre, depth, rotation = _in_wall(plan, plan.wall(door.wall), door.position, room,
-                                           other)
+        centre, depth, rotation = _in_wall(plan, plan.wall(door.wall), door.position, room, other)
         model = detail_model(rules, "door", [types.get(room), types.get(other)])
         items.append(FurnitureItem(
             name=f"door{door.id}", model=model, room=room, position=centre,

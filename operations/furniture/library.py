@@ -28,9 +28,7 @@ import numpy as np
 import trimesh
 
 from cga.errors import CGAError, ResourceNotFoundError
-from cga.model import FloorPlan, FurnitureItem, rotation_matrix
 from cga.resources import shipped_dir
-from cga.scene import SceneNode
 
 __all__ = [
     "DEFAULT_COLOR",
@@ -41,8 +39,6 @@ __all__ = [
     "default_library",
     "grammar_model_dirs",
     "is_convex_part",
-    "item_node",
-    "item_transform",
     "load_model",
     "name_candidates",
     "normalize_name",
@@ -57,9 +53,6 @@ DEFAULT_COLOR = (0.7, 0.7, 0.7)
 
 _CONVEX_TOLERANCE = 1e-3
 """A part is convex when its volume is within this fraction of its convex hull's."""
-
-_SIZE_TOLERANCE = 1e-9
-"""Item and model sizes closer than this (m) need no scaling."""
 
 _SEPARATORS = re.compile(r"[\s_\-]+")
 _TRAILING_NUMBER = re.compile(r"\d+$")
@@ -328,78 +321,3 @@ def default_library(extra_dirs: Iterable[Path] = ()) -> ModelLibrary:
     (package ``cga.models``, found with :func:`cga.resources.shipped_dir`)."""
     shipped = shipped_dir("cga.models")
     return ModelLibrary([*map(Path, extra_dirs), *([shipped] if shipped else [])])
-
-
-def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -> np.ndarray:
-    """4×4 matrix taking ``model``'s frame to the world pose of ``item``.
-
-    The model is scaled per axis to ``item.size`` (when that differs from the model's
-    size, e.g. a door leaf sized to its opening), turned by ``item.rotation`` quarter
-    turns about +y and moved to ``(x, floor_y + item.elevation, z)``.
-
-    Raises
-    ------
-    ValueError
-        ``item.size`` has an extent that is not positive.
-    """
-    target = np.asarray(item.size, dtype=float)
-    if target.shape != (3,) or not np.all(target > 0):
-        raise ValueError(f"furniture item {item.name!r}: size {item.size} must be three "
-                         f"positive extents (width, height, depth) in metres")
-    own = np.asarray(model.size, dtype=float)
-    scale = np.where(np.abs(target - own) <= _SIZE_TOLERANCE, 1.0, target / own)
-    matrix = np.eye(4)
-    matrix[:3, :3] = rotation_matrix(item.rotation) @ np.diag(scale)
-    matrix[:3, 3] = (item.position[0], floor_y + item.elevation, item.position[1])
-    return matrix
-
-
-def _posed(mesh: trimesh.Trimesh, matrix: np.ndarray) -> trimesh.Trimesh:
-    """A new mesh: ``mesh`` moved by ``matrix`` (from :func:`item_transform`), with its colours.
-
-    Built directly from the moved vertices, which is several times faster than
-    ``mesh.copy().apply_transform(matrix)`` (a deep copy, then a second pass over the
-    copy). The matrix turns and scales by positive factors, so the faces keep their
-    winding.
-    """
-    return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
-                           faces=mesh.faces.copy(), visual=mesh.visual.copy(), process=False)
-
-
-def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> SceneNode:
-    """The scene node of a placed furniture item: its model posed in world coordinates.
-
-    The node is named ``floor{i}/room{id}_{Type}/furniture/{name}`` (``room{id}`` when the
-    room is untyped). Solid items are dynamic; details (doors, windows) and
-    non-colliding items (rugs) are static. ``parts`` are the posed convex parts, ``extras``
-    carry the semantic labels and the mass (posed volume × the model's density).
-
-    Raises
-    ------
-    ResourceNotFoundError
-        The item's model is not in the library.
-    """
-    model = library.get(item.model)
-    matrix = item_transform(item, model, plan.floor_y)
-    parts = tuple(_posed(p, matrix) for p in model.parts)
-    mesh = _posed(model.mesh, matrix)
-    room = plan.room(item.room)
-    # an affine map scales every volume (and convex hull volume) by |det|
-    volume = model.volume * abs(float(np.linalg.det(matrix[:3, :3])))
-    return SceneNode(
-        path=f"floor{plan.index}/{room.label}/furniture/{item.name}",
-        kind="furniture",
-        mesh=mesh,
-        extras={
-            "model": model.name,
-            "room": item.room,
-            "name": item.name,
-            "parent": item.parent,
-            "rotation": item.rotation,
-            "density": model.density,
-            "mass": volume * model.density,
-            "convex_parts": model.convex_parts,
-        },
-        static=item.is_detail or item.non_collision,
-        parts=parts,
-    )

@@ -157,27 +157,22 @@ def clear_windows(wall: Wall, windows: Sequence[Window], lo: float,
     return replace(wall, openings=openings), kept, removed
 
 
-def _face_offset(wall: Wall, thickness: float) -> float:
-    """Distance from the wall's line to its face on the room side."""
-    return thickness if wall.outer else thickness / 2
-
-
 def _leaf_frame(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
-                room: int, thickness: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                room: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(pivot, along, normal): the hinge point on the room-side face of the wall, the
     unit vector from the hinge to the other jamb and the unit vector into ``room``
     (``Wall.rooms`` is (left, right) walking from start to end)."""
     d = wall.direction
-    normal = np.array([-d[1], d[0]]) if room == wall.rooms[0] else np.array([d[1], -d[0]])
+    normal = wall.normal_into(room)
     jamb = centre - width / 2 if hinge == "start" else centre + width / 2
     along = d if hinge == "start" else -d
-    pivot = np.asarray(wall.point_at(jamb)) + normal * _face_offset(wall, thickness)
+    pivot = np.asarray(wall.point_at(jamb)) + normal * wall.face_offset(room)
     return pivot, along, normal
 
 
 def _swing_polygon(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
-                   room: int, thickness: float) -> Polygon:
-    pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room, thickness)
+                   room: int) -> Polygon:
+    pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room)
     angles = np.linspace(0.0, math.pi / 2, 9)
     arc = pivot + width * (np.cos(angles)[:, None] * along + np.sin(angles)[:, None] * normal)
     return Polygon([tuple(pivot), *map(tuple, arc)])
@@ -190,8 +185,7 @@ def door_swing(door: Door, plan: FloorPlan) -> Polygon:
     """
     wall = plan.wall(door.wall)
     centre = math.dist(wall.start, door.position)
-    return _swing_polygon(wall, centre, door.width, door.hinge, door.swing_room,
-                          plan.settings.wall_thickness)
+    return _swing_polygon(wall, centre, door.width, door.hinge, door.swing_room)
 
 
 def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
@@ -210,7 +204,7 @@ def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
     else:
         by_size = sorted((plan.room(r) for r in rooms), key=lambda r: (-r.area, r.id))
         swing_room = next((r.id for r in by_size if _sweep_fits(
-            r, wall, centre, settings.door_width, hinge, settings.wall_thickness)),
+            r, wall, centre, settings.door_width, hinge)),
             by_size[0].id)
     return Door(id=door_id, wall=wall.id, rooms=rooms, position=wall.point_at(centre),
                 width=settings.door_width, height=settings.door_height,
@@ -219,10 +213,10 @@ def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
 
 
 def _sweep_fits(room: Room, wall: Wall, centre: float, width: float,
-                hinge: Literal["start", "end"], thickness: float) -> bool:
+                hinge: Literal["start", "end"]) -> bool:
     """Whether the square the leaf sweeps (the quarter circle's bounding square, a hair
     smaller so the face it starts from counts as inside) lies in the room's free floor."""
-    pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room.id, thickness)
+    pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room.id)
     eps = 1e-6
     corner = pivot + (along + normal) * eps
     reach = width - 2 * eps

@@ -23,7 +23,7 @@ from shapely.geometry import Polygon, box
 from shapely.geometry.polygon import orient
 
 from cga.operations.base import OperationContext
-from cga.operations.floorplan.solids import floor_nodes
+from cga.meshing.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape
 

@@ -15,7 +15,6 @@ from hypothesis import strategies as st
 
 from cga.export.glb import scene_as_glb
 from cga.export.scene_json import scene_json_text
-from cga.meshing import scene_nodes
 from cga.pipeline import build
 
 DEMOS = Path(__file__).resolve().parents[2] / "demos"
@@ -23,7 +22,7 @@ DEMOS = Path(__file__).resolve().parents[2] / "demos"
 
 def _outputs(grammar: Path, seed: int) -> tuple[bytes, dict]:
     scene = build(grammar, seed=seed, physics=False, formats=(), quiet=True)
-    nodes = scene_nodes(scene)
+    nodes = scene.nodes
     document = json.loads(scene_json_text(scene, nodes))
     document.pop("timings")
     return scene_as_glb(scene, nodes), document

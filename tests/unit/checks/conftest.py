@@ -15,6 +15,7 @@ from cga.model import OUTSIDE, Door, FloorPlan, FloorSettings, Opening
 from cga.operations.floorplan.rectangles import plan_from_rectangles
 from cga.scene import Scene, SceneNode
 from cga.shape import Mass, Shape
+from items import item_info
 
 
 def box_mesh(extents, centre) -> trimesh.Trimesh:
@@ -108,7 +109,7 @@ def box_item(name: str, size, position, *, floor_y: float = 0.2, lift: float = 0
     w, h, d = size
     mesh = box_mesh((w, h, d), (position[0], floor_y + lift + h / 2, position[1]))
     return SceneNode(f"floor{floor}/room{room}/furniture/{name}", "furniture", mesh,
-                     extras={"name": name, "model": name, "room": room, "mass": mass},
+                     item=item_info(name, room=room, mass=mass),
                      static=static, parts=(mesh,))
 
 

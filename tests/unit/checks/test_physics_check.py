@@ -10,6 +10,7 @@ import trimesh
 
 from cga.checks import check_physics, physics
 from cga.scene import SceneNode
+from items import item_info
 
 pytestmark = pytest.mark.physics
 
@@ -92,7 +93,7 @@ def test_top_heavy_item_tips_over(kit, room):
     arm = kit.box_mesh((1.2, 0.1, 0.3), (2.6, 0.2 + 1.45, 2.0))
     node = SceneNode("floor0/room0/furniture/sign", "furniture",
                      trimesh.util.concatenate([post, arm]),
-                     extras={"name": "sign", "model": "sign", "room": 0, "density": 500.0},
+                     item=item_info("sign", density=500.0),
                      static=False, parts=(post, arm))
     report = check_physics(kit.scene_of(plan), nodes + [node])
     result = _item(report, "sign")
@@ -150,8 +151,7 @@ def test_concave_user_model_is_decomposed(kit, room, tmp_path):
     desk = trimesh.boolean.union([top, wing], engine="manifold")
     assert not desk.is_convex
     node = SceneNode("floor0/room0/furniture/desk", "furniture", desk,
-                     extras={"name": "desk", "model": "desk", "room": 0, "mass": 40.0,
-                             "convex_parts": False},
+                     item=item_info("desk", mass=40.0, convex_parts=False),
                      static=False, parts=(desk,))
     report = check_physics(kit.scene_of(plan), nodes + [node], cache_dir=tmp_path)
     assert report.passed, report.summary()
@@ -177,7 +177,7 @@ def test_barely_unbalanced_item_is_caught(kit, room):
     top = kit.box_mesh((0.1, 0.4, 0.1), (2.18, 0.2 + 0.25, 2.0))
     node = SceneNode("floor0/room0/furniture/stand", "furniture",
                      trimesh.util.concatenate([foot, top]),
-                     extras={"name": "stand", "model": "stand", "room": 0},
+                     item=item_info("stand"),
                      static=False, parts=(foot, top))
     report = check_physics(kit.scene_of(plan), nodes + [node])
     result = _item(report, "stand")
@@ -217,7 +217,8 @@ def test_wardrobe_on_a_finely_cut_slab_against_a_wall_rests(kit):
     parts = tuple(kit.box_mesh(np.subtract(hi, lo), np.add(lo, hi) / 2) for lo, hi in boxes)
     wardrobe = SceneNode("floor0/room2/furniture/wardrobe", "furniture",
                          trimesh.util.concatenate(parts),
-                         extras={"name": "wardrobe", "mass": 89.4}, static=False, parts=parts)
+                         item=item_info("wardrobe", room=2, mass=89.4), static=False,
+                         parts=parts)
     nodes = [SceneNode("floor0/slab", "slab", slab), SceneNode("floor0/wall15", "wall", wall),
              wardrobe]
     report = check_physics(kit.scene_of(), nodes)
@@ -251,6 +252,6 @@ def test_server_is_closed_after_a_check_and_after_a_failure(kit, room, monkeypat
 def test_item_without_geometry_is_rejected(kit, room):
     plan, nodes = room
     empty = SceneNode("floor0/room0/furniture/ghost", "furniture", trimesh.Trimesh(),
-                      extras={"name": "ghost"}, static=False)
+                      item=item_info("ghost"), static=False)
     with pytest.raises(ValueError, match="ghost has no geometry"):
         check_physics(kit.scene_of(plan), nodes + [empty])

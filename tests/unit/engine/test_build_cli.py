@@ -70,7 +70,7 @@ def test_failed_export_leaves_no_output(grammar_file, tmp_path, monkeypatch):
 
 
 def test_strict_fails_on_a_failed_check_and_writes_nothing(grammar_file, tmp_path, monkeypatch):
-    def failing(scene, nodes, robot_radius, progress):
+    def failing(scene, robot_radius, progress):
         scene.checks["physics"] = {"passed": False, "summary": "physics: 0/1 items at rest"}
 
     monkeypatch.setattr(build_module, "_run_checks", failing)

@@ -22,6 +22,7 @@ from cga.model import (OUTSIDE, Door, FloorPlan, FloorSettings, FurnitureItem, O
                        Wall, Window)
 from cga.scene import Scene, SceneNode
 from cga.shape import Mass, Shape
+from items import item_info
 
 
 STOREY = 3.0
@@ -116,11 +117,12 @@ FURNITURE = {
 TYPES = {0: ("Livingroom", "Kitchen", "Bathroom"), 1: ("Bedroom", "Office", "Bathroom")}
 
 
-def _box_node(path, kind, lo, hi, *, static=True, extras=None, parts=False):
+def _box_node(path, kind, lo, hi, *, static=True, extras=None, parts=False, item=None):
     lo, hi = np.asarray(lo, float), np.asarray(hi, float)
     mesh = trimesh.creation.box(extents=hi - lo)
     mesh.apply_translation((lo + hi) / 2)
-    return SceneNode(path, kind, mesh, dict(extras or {}), static, (mesh.copy(),) if parts else ())
+    return SceneNode(path, kind, mesh, dict(extras or {}), static, (mesh.copy(),) if parts else (),
+                     item)
 
 
 def _inward(wall: Wall) -> np.ndarray:
@@ -170,8 +172,8 @@ def make_nodes(plans: list[FloorPlan]) -> list[SceneNode]:
                 f"floor{plan.index}/{plan.room(item.room).label}/furniture/{item.name}",
                 "furniture", (fx0, y, fz0), (fx1, y + item.size[1], fz1),
                 static=item.non_collision or item.is_detail, parts=True,
-                extras={"model": item.model, "name": item.name, "room": item.room,
-                        "rotation": item.rotation, "mass": 20.0 + 10 * item.size[1]}))
+                item=item_info(item.name, model=item.model, room=item.room,
+                               rotation=item.rotation, mass=20.0 + 10 * item.size[1])))
     return nodes
 
 

@@ -11,6 +11,7 @@ import trimesh
 from cga.export.obj import export_obj
 from cga.export.palette import KIND_COLORS
 from cga.scene import SceneNode
+from items import item_info
 
 
 @pytest.fixture(scope="module")
@@ -52,7 +53,7 @@ def test_coloured_furniture_keeps_its_colours(small_scene, tmp_path):
     chair = trimesh.creation.box((0.5, 0.9, 0.5))
     chair.visual.vertex_colors = np.tile([204, 102, 51, 255], (len(chair.vertices), 1))
     node = SceneNode("floor0/room1_Kitchen/furniture/chair", "furniture", chair,
-                     {"model": "chair", "mass": 5.0}, False, (chair,))
+                     static=False, parts=(chair,), item=item_info("chair", mass=5.0))
     obj, mtl = export_obj(scene, [*nodes, node], tmp_path, "house")
     text = obj.read_text()
     block = text.split("g floor0/room1_Kitchen/furniture/chair\n")[1]

@@ -18,6 +18,7 @@ from cga.errors import ExportError
 from cga.export.sdf import export_sdf
 from cga.export.urdf import export_urdf
 from cga.scene import SceneNode
+from items import item_info
 
 
 def _ros_box(mesh):
@@ -81,7 +82,7 @@ def test_urdfs_load_with_one_body_per_item_plus_building(client, outputs, small_
     _check_in_place(client, bodies, nodes)
     for node in _furniture(nodes):
         mass = client.getDynamicsInfo(bodies[node.path], -1)[0]
-        assert mass == pytest.approx(0.0 if node.static else node.extras["mass"])
+        assert mass == pytest.approx(0.0 if node.static else node.item.mass)
 
 
 def test_sdf_world_loads_with_one_body_per_item_plus_building(client, outputs, small_scene):
@@ -175,8 +176,8 @@ def _pedestal_basin(x, z, floor_y):
     basin.apply_translation((x, floor_y + 0.8, z - 0.1))
     mesh = trimesh.util.concatenate([pedestal, basin])
     node = SceneNode("floor0/room2_Bathroom/furniture/washbasin", "furniture", mesh,
-                     {"model": "washbasin", "rotation": 0, "mass": 20.0}, False,
-                     (pedestal, basin))
+                     static=False, parts=(pedestal, basin),
+                     item=item_info("washbasin", mass=20.0))
     volumes = np.array([0.2 * 0.7 * 0.2, 0.6 * 0.2 * 0.5])
     centres = np.array([[x, floor_y + 0.35, z], [x, floor_y + 0.8, z - 0.1]])
     return node, (volumes[:, None] * centres).sum(axis=0) / volumes.sum()
@@ -216,8 +217,7 @@ def test_non_convex_user_model_gets_the_same_convex_pieces_as_the_physics_check(
     leg.apply_translation((0.0, 0.5, 0.0))
     el = trimesh.boolean.union([leg, arm], engine="manifold")  # an L: not convex
     item = SceneNode(path="floor0/room0/furniture/sculpture", kind="furniture", mesh=el,
-                     extras={"model": "sculpture", "mass": 20.0, "rotation": 0,
-                             "convex_parts": False},
+                     item=item_info("sculpture", mass=20.0, convex_parts=False),
                      static=False, parts=(el,))
     scene = Scene(name="t", seed=0, units=1.0, terminals=[])
     _, (body,) = robot_bodies(scene, [SceneNode(path="floor0/slab", kind="slab", mesh=slab),

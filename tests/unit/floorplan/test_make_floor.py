@@ -11,7 +11,7 @@ from cga.errors import DerivationError
 from cga.evaluator import derive
 from cga.operations import OperationRegistry
 from cga.operations.base import OperationContext
-from cga.operations.floorplan.solids import floor_nodes
+from cga.meshing.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.parser import parse
 from cga.shape import Face, Mass, Shape

@@ -10,7 +10,7 @@ from shapely.geometry import Point, box
 
 from cga.model import front_vector
 from cga.operations.furniture.clearance import (
-    door_keepouts, envelope, half_extents, quarter_turn_towards, wall_side_normal, window_strips)
+    door_keepouts, envelope, half_extents, quarter_turn_towards, window_strips)
 
 
 def boxes(parts):
@@ -74,4 +74,4 @@ def test_window_strip_depth(room_plan):
     (strip,) = window_strips(plan, 0)
     zone = strip.zone(0.5)
     assert zone.bounds == pytest.approx((1.9, 3.3, 3.1, 4.0))
-    assert wall_side_normal(plan, plan.wall(2), (2.5, 4.0), 0) == pytest.approx((0, -1))
+    assert plan.wall(2).normal_into(0) == pytest.approx((0, -1))

@@ -10,7 +10,8 @@ import pytest
 from shapely.geometry import box
 
 from cga.model import FloorPlan, FloorSettings, FurnitureItem, Room
-from cga.operations.furniture.library import ModelLibrary, item_node
+from cga.meshing.items import item_node
+from cga.operations.furniture.library import ModelLibrary
 
 
 def _box_obj(path: Path, width: float, height: float, depth: float) -> Path:
@@ -54,4 +55,4 @@ def test_item_mass_is_the_posed_box_volume_times_density(tmp_path, rotation, siz
     item = FurnitureItem(name="crate", model="crate", room=0, position=(5.0, 5.0),
                          rotation=rotation, size=size)
     node = item_node(item, plan, library)
-    assert node.extras["mass"] == pytest.approx(np.prod(size) * node.extras["density"])
+    assert node.item.mass == pytest.approx(np.prod(size) * node.item.density)

@@ -1,16 +1,11 @@
-"""Turn a Scene's terminal shapes into named world-space meshes (:class:`~cga.scene.SceneNode`).
+"""Terminal masses and faces as named world-space meshes (:class:`~cga.scene.SceneNode`).
 
 * A mass becomes a watertight prism: its footprint is extruded with
   :func:`trimesh.creation.extrude_polygon` (which builds along +z from the x–y plane)
   and turned to y-up. A mass of height 0 (an un-extruded lot) becomes a flat face.
 * A face becomes a triangulated polygon whose triangles face along its outward normal.
-* A storey (a terminal with a floor plan) becomes the floor's solids from
-  ``cga.operations.floorplan.solids.floor_nodes`` plus one node per furniture item from
-  ``cga.operations.furniture.library.item_node``. Those modules are imported only when
-  a scene has floors, so massing builds never load them.
 
-Node paths: masses and faces are named by their shape path (``Lot/Body/Upper[2]``);
-floor nodes are named by the floor modules (``floor1/room3_Kitchen/wall2``).
+Masses and faces are named by their shape path (``Lot/Body/Upper[2]``).
 """
 
 from __future__ import annotations
@@ -20,15 +15,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from shapely.geometry import Polygon
 
-from .scene import Scene, SceneNode
-from .shape import Face, Mass, Shape
+from cga.scene import SceneNode
+from cga.shape import Face, Mass, Shape
 
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
-    from cga.operations.furniture.library import ModelLibrary
-
-__all__ = ["mass_mesh", "face_mesh", "footprint_mesh", "shape_node", "scene_nodes"]
+__all__ = ["mass_mesh", "face_mesh", "footprint_mesh", "shape_node"]
 
 # (x, -z) plan polygon extruded along +z, then turned -90° about x: (x, y, z) → (x, z, -y),
 # so (x, -z_plan, h) lands at (x, h, z_plan): a rotation, so triangle winding survives.
@@ -122,35 +115,3 @@ def shape_node(shape: Shape) -> SceneNode:
     face: Face = geometry
     return SceneNode(path=shape.path_name, kind="face", mesh=face_mesh(face.vertices, face.normal()),
                      extras={**extras, "face": face.kind})
-
-
-def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[SceneNode]:
-    """Every mesh of the build, in derivation order.
-
-    Parameters
-    ----------
-    scene:
-        The build's scene.
-    library:
-        Furniture models; default: the grammar's folders, then the shipped models.
-
-    Returns
-    -------
-    list of SceneNode
-        Masses and faces named by shape path; for each storey its floor solids
-        (walls, slab, ceiling, ...) followed by its furniture.
-    """
-    nodes: list[SceneNode] = []
-    for shape in scene.terminals:
-        if shape.plan is None:
-            nodes.append(shape_node(shape))
-            continue
-        from cga.operations.floorplan.solids import floor_nodes
-        from cga.operations.furniture.library import default_library, grammar_model_dirs, item_node
-
-        if library is None:
-            extra = grammar_model_dirs(scene.source) if scene.source is not None else []
-            library = default_library(extra)
-        nodes.extend(floor_nodes(shape.plan))
-        nodes.extend(item_node(item, shape.plan, library) for item in shape.plan.furniture)
-    return nodes

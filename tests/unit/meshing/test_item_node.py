@@ -7,7 +7,8 @@ import pytest
 from shapely.geometry import box
 
 from cga.model import FloorPlan, FloorSettings, FurnitureItem, Room, front_vector
-from cga.operations.furniture.library import ModelLibrary, item_node
+from cga.meshing.items import item_node
+from cga.operations.furniture.library import ModelLibrary
 from cga.resources import shipped_dir
 
 LIBRARY = ModelLibrary([shipped_dir("cga.models")])
@@ -40,19 +41,21 @@ def test_chair_stands_on_the_floor_at_its_position():
     assert hi - lo == pytest.approx(LIBRARY.get("chair").size)
 
 
-def test_path_kind_and_extras():
+def test_path_kind_and_item_facts():
     node = item_node(item(parent="diningtable"), plan(), LIBRARY)
     model = LIBRARY.get("chair")
     assert node.path == "floor1/room2_Bedroom/furniture/chair1"
     assert node.kind == "furniture"
     assert not node.static
-    assert node.extras["model"] == "chair"
-    assert node.extras["room"] == 2
-    assert node.extras["name"] == "chair1"
-    assert node.extras["parent"] == "diningtable"
-    assert node.extras["rotation"] == 0
-    assert node.extras["density"] == model.density
-    assert node.extras["mass"] == pytest.approx(model.density * sum(p.volume for p in node.parts))
+    info = node.item
+    assert (info.model, info.room, info.name, info.parent, info.rotation) == (
+        "chair", 2, "chair1", "diningtable", 0)
+    assert info.model_path == model.path and info.convex_parts
+    assert info.density == model.density
+    assert info.mass == pytest.approx(model.density * sum(p.volume for p in node.parts))
+    assert node.extras == {}
+    assert set(node.labels) == {"model", "room", "name", "parent", "rotation", "density",
+                                "mass", "convex_parts"}
 
 
 def test_untyped_room_has_no_type_in_the_path():
@@ -97,7 +100,7 @@ def test_door_leaf_is_scaled_to_its_opening():
     node = item_node(item("door", rotation=2, size=size, is_detail=True), plan(), LIBRARY)
     assert node.mesh.extents == pytest.approx(size)
     assert node.static
-    assert node.extras["mass"] == pytest.approx(model.mass * (1.0 / 0.9) * (2.2 / 2.1), rel=1e-6)
+    assert node.item.mass == pytest.approx(model.mass * (1.0 / 0.9) * (2.2 / 2.1), rel=1e-6)
 
 
 def test_window_sits_at_its_sill():

@@ -1,4 +1,4 @@
-"""3D walls and slabs of a floor plan, made at meshing time from the final plan.
+"""3D walls and slabs of a storey, made by the meshing layer from the final plan.
 
 ``make_floor`` only makes the plan; doors are added later by ``type_rooms``. So the
 solids are built last, from whatever openings the walls carry then (DESIGN §6):
@@ -68,8 +68,8 @@ def wall_footprints(plan: FloorPlan) -> dict[int, Polygon | MultiPolygon]:
     continued = {w.id: [_continuation(w, p, ends) for p in (w.start, w.end)] for w in plan.walls}
     line = _line_lengths(plan.walls, continued)
     walls = sorted(plan.walls, key=lambda w: (not w.outer, -line[w.id], -w.length, w.id))
-    bands = np.array([_band(w, t, *(_reach(w, end, ends, t) if continued[w.id][k] is None else 0.0
-                                    for k, end in enumerate(("start", "end"))))
+    bands = np.array([_band(w, *(_reach(w, end, ends, t) if continued[w.id][k] is None else 0.0
+                                 for k, end in enumerate(("start", "end"))))
                       for w in walls])
     outside = ~shapely.within(bands, plan.footprint)
     bands[outside] = shapely.intersection(bands[outside], plan.footprint)
@@ -198,16 +198,10 @@ def _reach(wall: Wall, end: str, ends: dict[tuple[float, float], list[Wall]], t:
     return t if a[0] * b[1] - a[1] * b[0] < 0 else 0.0
 
 
-def _band(wall: Wall, t: float, before: float, after: float) -> Polygon:
-    """The wall's strip, ``before``/``after`` longer than the wall at its start/end:
-    across ``[-t/2, t/2]`` (inner wall) or ``[0, t]`` to its left (outer wall)."""
-    d = wall.direction
-    n = np.array([-d[1], d[0]])
-    a = np.asarray(wall.start) - d * before
-    b = np.asarray(wall.end) + d * after
-    lo, hi = (0.0, t) if wall.outer else (-t / 2, t / 2)
-    corners = np.round([a + n * lo, b + n * lo, b + n * hi, a + n * hi], _DIGITS)
-    return Polygon(corners)
+def _band(wall: Wall, before: float, after: float) -> Polygon:
+    """The wall's strip (:meth:`Wall.band_corners`), ``before``/``after`` longer than the
+    wall at its start/end, its corners on the micrometre grid."""
+    return Polygon(np.round(wall.band_corners(before, after), _DIGITS))
 
 
 def _without_slivers(geometry) -> Polygon | MultiPolygon | None:

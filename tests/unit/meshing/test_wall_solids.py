@@ -13,7 +13,7 @@ from shapely.geometry import box
 
 from cga.model import FloorSettings, Opening
 from cga.operations.floorplan import plan_from_rectangles
-from cga.operations.floorplan.solids import floor_nodes, wall_footprints
+from cga.meshing.solids import floor_nodes, wall_footprints
 
 SETTINGS = FloorSettings(windows_per_wall=1, window_width=1.2, window_height=1.2, window_sill=0.9)
 RECTS = [(0, 0, 6, 10), (6, 0, 14, 5), (6, 5, 14, 10)]
