@@ -25,8 +25,17 @@ def _formats(text: str) -> list[str]:
     return [part.strip().lower() for part in text.split(",") if part.strip()]
 
 
+def _add_allow_path(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--allow-path", action="append", default=[], metavar="DIR",
+                        dest="allow_paths",
+                        help="a folder besides the grammar's own folder tree and the shipped "
+                             "data that rule tables, models and lots may be read from "
+                             "(repeatable; anything else is refused)")
+
+
 def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
+    _add_allow_path(parser)
     parser.add_argument("--seed", type=int, default=0, metavar="N",
                         help="random seed; the same seed gives byte-identical files (default 0)")
     parser.add_argument("--lot", metavar="LOT",
@@ -63,7 +72,8 @@ def _run_build(args: argparse.Namespace) -> int:
     scene = build(args.grammar, seed=args.seed, lot=args.lot, units=args.units,
                   out_dir=out_dir, formats=formats, physics=not args.no_physics,
                   robot_radius=args.robot_radius, strict=args.strict,
-                  quiet=args.quiet or args.json, max_depth=args.max_depth)
+                  quiet=args.quiet or args.json, max_depth=args.max_depth,
+                  allow_paths=args.allow_paths)
     if args.json:
         import json
 
@@ -79,13 +89,14 @@ def _run_build(args: argparse.Namespace) -> int:
 
 def _add_check_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
+    _add_allow_path(parser)
     parser.add_argument("--quiet", action="store_true", help="print nothing but errors")
 
 
 def _run_check(args: argparse.Namespace) -> int:
     from .validate import check_file
 
-    problems = check_file(args.grammar)
+    problems = check_file(args.grammar, allow_paths=args.allow_paths)
     for problem in problems:
         print(problem, file=sys.stderr)
     if problems:
@@ -101,6 +112,7 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
     parser.add_argument("-n", "--count", type=int, required=True, metavar="N",
                         help="number of seeds to build")
+    _add_allow_path(parser)
     parser.add_argument("--seed-start", type=int, default=0, metavar="S",
                         help="first seed (default 0)")
     parser.add_argument("--jobs", type=int, default=1, metavar="J",
@@ -126,7 +138,7 @@ def _run_batch(args: argparse.Namespace) -> int:
     from .export import BATCH_FORMATS
 
     out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.grammar).stem}-batch"
-    options = {"physics": not args.no_physics,
+    options = {"physics": not args.no_physics, "allow_paths": args.allow_paths,
                "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export]))}
     kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
                   build_options=options)

@@ -21,9 +21,40 @@ __all__ = [
     "RuleTableError",
     "NoSolutionError",
     "ResourceNotFoundError",
+    "ResourceAccessError",
+    "BudgetError",
     "UsageError",
     "ExportError",
+    "EXCERPT_LIMIT",
+    "excerpt",
+    "shown",
 ]
+
+EXCERPT_LIMIT = 80
+"""Most characters of user data (a CSV cell, a path, a header line) an error message quotes."""
+
+
+def excerpt(text: str, limit: int = EXCERPT_LIMIT) -> str:
+    """``text`` quoted for an error message: at most ``limit`` characters, control
+    characters escaped (``\\x00``, ``\\n``), an ellipsis and the full length when cut.
+
+    A message never carries more than a short, printable excerpt of a file, so a 10 MB
+    header line or a binary file read as a table cannot flood a terminal or smuggle
+    escape sequences into it (issue 19).
+    """
+    cut = text[:limit]
+    shown = "".join(ch if ch.isprintable() or ch == " " else repr(ch)[1:-1] for ch in cut)
+    if len(text) > limit:
+        shown += f"… ({len(text):,} characters)"
+    return f"'{shown}'"
+
+
+def shown(text: str) -> str:
+    """``text`` as is when it is short and printable (a path, a name), else its
+    :func:`excerpt`."""
+    if len(text) <= EXCERPT_LIMIT and text.isprintable():
+        return text
+    return excerpt(text)
 
 
 @dataclass(frozen=True)
@@ -129,6 +160,19 @@ class ResourceNotFoundError(CGAError):
         if self.searched:
             text += "\n  looked in:" + "".join(f"\n    {p}" for p in self.searched)
         super().__init__(text)
+
+
+class ResourceAccessError(CGAError):
+    """A file named by a grammar lies outside the folders a build may read (the sandbox)."""
+
+    def __init__(self, message: str, *, path: str):
+        super().__init__(message)
+        self.path = path
+
+
+class BudgetError(CGAError):
+    """An input would exceed a documented limit (shapes, cells, rows, vertices, depth);
+    raised before the work starts, with the numbers (docs/limits.md)."""
 
 
 class UsageError(CGAError):

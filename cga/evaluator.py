@@ -43,12 +43,14 @@ from shapely.geometry import Polygon
 
 from . import ast
 from .binding import bind_arguments
-from .errors import DerivationError, ResourceNotFoundError, SourceError, Span
+from .errors import (DerivationError, ResourceAccessError, ResourceNotFoundError, SourceError,
+                     Span)
 from .expressions import UNKNOWN, Namespace, Value, describe, evaluate, shape_attributes
 from .lot import DEFAULT_LOT, lot_from_call, rectangle
 from .model import Diagnostic
 from .randomness import shape_rng, variable_rng
 from .resources import resolve_resource
+from .sandbox import Sandbox
 from .shape import Mass, Shape
 from cga.operations import OperationRegistry, UnknownOperation
 from cga.operations.base import Child, Operation, OperationContext
@@ -326,12 +328,16 @@ class Evaluator:
     library:
         The furniture model library operations use (``OperationContext.library``);
         default: the grammar's folder and its ``models/``, then the shipped models.
+    sandbox:
+        The folders rule tables and models may be read from (:mod:`cga.sandbox`);
+        default: ``base_dir`` and the shipped data.
     """
 
     def __init__(self, grammar: ast.Grammar, *, seed: int = 0, units: float | None = None,
                  operations: OperationRegistry | None = None,
                  max_depth: int = DEFAULT_MAX_DEPTH, base_dir: str | Path | None = None,
-                 strict: bool = False, library: ModelLibrary | None = None):
+                 strict: bool = False, library: ModelLibrary | None = None,
+                 sandbox: Sandbox | None = None):
         if seed < 0:
             raise ValueError(f"seed must be non-negative, got {seed}")
         if max_depth < 1:
@@ -345,12 +351,13 @@ class Evaluator:
         self.max_depth = max_depth
         self.base_dir = Path(base_dir) if base_dir is not None else Path(grammar.file).parent
         self.strict = strict
+        self.sandbox = sandbox if sandbox is not None else Sandbox.for_grammar(self.base_dir)
         self.rules = index_rules(grammar)
         if library is None:
             # imported here: `cga check` uses this module and needs no model files
-            from cga.operations.furniture.library import default_library
+            from cga.operations.furniture.library import grammar_library
 
-            library = default_library([self.base_dir, self.base_dir / "models"])
+            library = grammar_library(self.base_dir, self.sandbox)
         self.library = library
 
     # -- public -----------------------------------------------------------------------
@@ -443,7 +450,7 @@ class Evaluator:
             rng=rng, units=self.units, resolve=self._resolver(call),
             report=run.diagnostics.append, span=call.span, successor_count=len(successors),
             cache=run.cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir,
-            library=self.library)
+            library=self.library, sandbox=self.sandbox)
         started = time.perf_counter()
         try:
             children = operation.apply(shape, args, ctx)
@@ -464,8 +471,9 @@ class Evaluator:
         names it (or the call)."""
         def resolve(path: str | Path, kind: str = "rules") -> Path:
             try:
-                return resolve_resource(path, kind, base_dir=self.base_dir)
-            except ResourceNotFoundError as error:
+                return resolve_resource(path, kind, base_dir=self.base_dir,
+                                        sandbox=self.sandbox)
+            except (ResourceNotFoundError, ResourceAccessError) as error:
                 span = next((a.span for a in call.args if isinstance(a.value, ast.String)
                              and a.value.value == str(path)), None)
                 raise DerivationError(str(error), span or call.span) from None

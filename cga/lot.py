@@ -22,17 +22,22 @@ grammar units; :func:`lot_from_call` scales them by ``units``.
 from __future__ import annotations
 
 import json
+import os
 import re
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon, shape as geojson_shape
 from shapely.geometry.polygon import orient
 from shapely.validation import explain_validity
 
-from .errors import DerivationError, ResourceNotFoundError, Span, UsageError
+from .errors import DerivationError, ResourceNotFoundError, Span, UsageError, excerpt, shown
+from .resources import is_regular_file
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .sandbox import Sandbox
 
 __all__ = ["DEFAULT_LOT", "MAX_EXTENT", "LOT_FORMATS", "validate_lot", "rectangle", "polygon_lot",
            "parse_lot", "load_geojson", "lot_from_call"]
@@ -117,19 +122,25 @@ def polygon_lot(points: Sequence[Sequence[float]], what: str = "polygon") -> Pol
     return validate_lot(Polygon(coords), what)
 
 
-def load_geojson(path: str | Path) -> Polygon:
+def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polygon:
     """The single polygon of a GeoJSON file (Polygon, Feature or FeatureCollection).
+
+    ``sandbox``, when given, holds the folders the file may lie in (:mod:`cga.sandbox`).
 
     Raises
     ------
     ResourceNotFoundError
-        The file does not exist.
+        The file does not exist (or is a symbolic-link loop).
+    ResourceAccessError
+        The file lies outside ``sandbox``.
     UsageError
         Not JSON, not GeoJSON, no polygon or more than one, or an invalid polygon.
     """
     file = Path(path)
-    if not file.is_file():
-        raise ResourceNotFoundError("lot file", str(path), [str(file.resolve())])
+    if sandbox is not None:
+        sandbox.check(file, "lot file")
+    if not is_regular_file(file):
+        raise ResourceNotFoundError("lot file", shown(str(path)), [shown(os.path.abspath(file))])
     try:
         document = json.loads(file.read_text(encoding="utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as error:
@@ -175,7 +186,8 @@ def _parse_call(name: str, inner: str, text: str) -> Polygon:
     return polygon_lot([(float(x), float(z)) for x, z in points], f"--lot {text!r}")
 
 
-def parse_lot(text: str, *, base_dir: str | Path | None = None) -> Polygon:
+def parse_lot(text: str, *, base_dir: str | Path | None = None,
+              sandbox: "Sandbox | None" = None) -> Polygon:
     """Parse a ``--lot`` value (see the module docstring for the forms).
 
     Parameters
@@ -184,6 +196,8 @@ def parse_lot(text: str, *, base_dir: str | Path | None = None) -> Polygon:
         The option's value.
     base_dir:
         Folder a relative GeoJSON path is taken from (default: the working directory).
+    sandbox:
+        Folders a GeoJSON file may lie in (:mod:`cga.sandbox`); None reads any.
 
     Raises
     ------
@@ -202,7 +216,7 @@ def parse_lot(text: str, *, base_dir: str | Path | None = None) -> Polygon:
         path = Path(text)
         if not path.is_absolute() and base_dir is not None:
             path = Path(base_dir) / path
-        return load_geojson(path)
+        return load_geojson(path, sandbox=sandbox)
     raise UsageError(f"--lot {text!r}: {_expected()}")
 
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import bisect
 import math
+import os
 import re
 from dataclasses import dataclass
 from functools import cache
@@ -31,7 +32,8 @@ from lark.lark import PostLex
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken, VisitError
 
 from . import ast
-from .errors import CGAError, GrammarSyntaxError, ResourceNotFoundError, Span, UsageError
+from .errors import CGAError, GrammarSyntaxError, ResourceNotFoundError, Span, UsageError, shown
+from .resources import is_folder, is_regular_file
 
 __all__ = ["parse", "parse_file", "read_grammar"]
 
@@ -96,10 +98,11 @@ def read_grammar(path: str | Path) -> str:
         The file is not UTF-8 text; the span is the first byte that cannot be decoded.
     """
     path = Path(path)
-    if path.is_dir():
+    if is_folder(path):
         raise ResourceNotFoundError("grammar", f"{path} (a folder, not a grammar file)")
-    if not path.is_file():
-        raise ResourceNotFoundError("grammar", str(path), [str(path.resolve())])
+    if not is_regular_file(path):  # also a name too long or a symbolic-link loop
+        raise ResourceNotFoundError("grammar", shown(str(path)),
+                                    [shown(os.path.abspath(path))])
     try:
         data = path.read_bytes()
     except OSError as error:

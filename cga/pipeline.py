@@ -142,7 +142,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
           units: float | None = None, out_dir: str | Path | None = None,
           formats: Sequence[str] = ("glb",), physics: bool = True, robot_radius: float = 0.25,
           strict: bool = False, quiet: bool = False, max_depth: int = DEFAULT_MAX_DEPTH,
-          operations: Any = None) -> Scene:
+          operations: Any = None, allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Build a grammar: derive it, mesh it, check it and write the requested files.
 
     Parameters
@@ -173,6 +173,10 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         Derivation depth limit (runaway recursion guard).
     operations:
         An :class:`~cga.operations.OperationRegistry` with extra operations (copied).
+    allow_paths:
+        Folders besides the grammar's folder tree and the shipped data that rule
+        tables, models and the lot file may be read from (``--allow-path``; see
+        :mod:`cga.sandbox`). Anything else is refused.
 
     Returns
     -------
@@ -182,15 +186,18 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
     Raises
     ------
     CGAError
-        Any user error (syntax, derivation, rule table, missing file, bad option,
-        strict failure); source errors carry the grammar text for their excerpt.
+        Any user error (syntax, derivation, rule table, missing file, a file outside
+        the allowed folders, bad option, strict failure); source errors carry the
+        grammar text for their excerpt.
     """
-    from .operations.furniture.library import default_library, grammar_model_dirs
+    from .operations.furniture.library import grammar_library
     from .parser import parse, read_grammar
+    from .sandbox import Sandbox
 
     path = Path(grammar_path)
     text = read_grammar(path)
     _check_options(seed, units, robot_radius, formats, max_depth)
+    sandbox = Sandbox.for_grammar(path.parent, allow_paths)
     timings: dict[str, float] = {}
     try:
         with _Progress(timings, quiet) as progress:
@@ -199,14 +206,16 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
             if lot is not None:
                 from .lot import parse_lot, validate_lot
 
-                lot = parse_lot(lot) if isinstance(lot, str) else validate_lot(lot, "lot")
+                lot = (parse_lot(lot, sandbox=sandbox.with_working_directory())
+                       if isinstance(lot, str) else validate_lot(lot, "lot"))
             # one model library per build: add_furniture sizes items with it, the
-            # meshing layer poses the same loaded models
-            library = default_library(grammar_model_dirs(path))
+            # meshing layer poses the same loaded models; both read only in the sandbox
+            library = grammar_library(path.parent, sandbox)
             with progress.stage("derive", "deriving the shape tree…"):
                 derivation = Evaluator(grammar, seed=seed, units=units, operations=operations,
                                        max_depth=max_depth, base_dir=path.parent,
-                                       strict=strict, library=library).derive(lot)
+                                       strict=strict, library=library,
+                                       sandbox=sandbox).derive(lot)
             timings.update(derivation.timings)
             scene = Scene(name=path.stem, seed=seed, units=derivation.units,
                           terminals=derivation.terminals, source=path,

@@ -19,6 +19,13 @@ Trying the longest tail first keeps two files of the same name apart:
 plain ``TestConfig.csv``. If nothing matches, :class:`~cga.errors.ResourceNotFoundError`
 lists every place that was looked at.
 
+With a :class:`~cga.sandbox.Sandbox` (as every build passes), a file found in any step
+must lie inside the sandbox after following links: a path as written that leaves it
+(``/etc/passwd``, ``../../x``, ``..\\..\\x``, a link out of the tree) is refused with
+:class:`~cga.errors.ResourceAccessError` unless the same name is found inside, and
+by-name lookups also search the folders the user allowed. Names the OS rejects (too
+long, NUL bytes, link loops) are simply not found.
+
 Shipped data is found with :func:`importlib.resources.files`, which works both in a
 source checkout and after ``pip install``.
 """
@@ -30,10 +37,14 @@ import importlib.util
 import re
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
+from typing import TYPE_CHECKING
 
-from .errors import ResourceNotFoundError
+from .errors import ResourceNotFoundError, shown
 
-__all__ = ["ResourceKind", "RESOURCE_KINDS", "resolve_resource", "shipped_dir"]
+if TYPE_CHECKING:  # pragma: no cover
+    from .sandbox import Sandbox
+
+__all__ = ["ResourceKind", "RESOURCE_KINDS", "is_folder", "is_regular_file", "resolve_resource", "shipped_dir"]
 
 
 @dataclass(frozen=True)
@@ -74,23 +85,41 @@ def shipped_dir(package: str) -> Path | None:
 
 
 def _components(written: str) -> list[str]:
-    """Path components of a name written on any OS (``\\`` and ``/`` both separate)."""
-    return [part for part in re.split(r"[\\/]+", written) if part and part != "."]
+    """Path components of a name written on any OS (``\\`` and ``/`` both separate);
+    ``..`` is dropped, so a lookup by name never climbs out of the folder searched."""
+    return [part for part in re.split(r"[\\/]+", written) if part and part not in (".", "..")]
+
+
+def is_folder(path: str | Path) -> bool:
+    """``Path(path).is_dir()``, False for names the OS rejects (too long, NUL, link loops)."""
+    try:
+        return Path(path).is_dir()
+    except (OSError, ValueError):
+        return False
+
+
+def is_regular_file(path: str | Path) -> bool:
+    """``Path(path).is_file()``, False for names the OS rejects (too long, NUL, link loops)."""
+    try:
+        return Path(path).is_file()
+    except (OSError, ValueError):
+        return False
 
 
 def _match_in(folder: Path, relative: PurePosixPath) -> Path | None:
     """``folder/relative`` if it is a file; else a case-insensitive match, step by step."""
     exact = folder.joinpath(*relative.parts)
-    if exact.is_file():
+    if is_regular_file(exact):
         return exact
     current = folder
     for i, part in enumerate(relative.parts):
-        if not current.is_dir():
-            return None
         last = i == len(relative.parts) - 1
-        matches = sorted(child for child in current.iterdir()
-                         if child.name.lower() == part.lower()
-                         and (child.is_file() if last else child.is_dir()))
+        try:
+            matches = sorted(child for child in current.iterdir()
+                             if child.name.lower() == part.lower()
+                             and (is_regular_file(child) if last else child.is_dir()))
+        except OSError:
+            return None
         if not matches:
             return None
         current = matches[0]
@@ -109,7 +138,8 @@ def _name_variants(parts: list[str], suffix: str | None) -> list[PurePosixPath]:
 
 
 def resolve_resource(path: str | Path, kind: str = "rules", *,
-                     base_dir: str | Path | None = None) -> Path:
+                     base_dir: str | Path | None = None,
+                     sandbox: "Sandbox | None" = None) -> Path:
     """Find the file a grammar argument names.
 
     Parameters
@@ -122,6 +152,9 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
     base_dir:
         The grammar's folder; relative paths are looked up there first. None means
         the current working directory.
+    sandbox:
+        The folders the file must lie in (see the module docstring); None reads any
+        file (for Python callers naming their own files).
 
     Returns
     -------
@@ -132,6 +165,8 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
     ------
     ResourceNotFoundError
         Nothing matched; the message lists every place looked at.
+    ResourceAccessError
+        The path as written, or every file found, lies outside ``sandbox``.
     ValueError
         ``kind`` is not one of :data:`RESOURCE_KINDS` (a programming error).
     """
@@ -141,20 +176,33 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
         raise ValueError(f"unknown resource kind {kind!r}; expected one of "
                          f"{', '.join(RESOURCE_KINDS)}") from None
     written = str(path)
+    written_shown = shown(written)
     base = Path(base_dir) if base_dir is not None else Path.cwd()
     shipped = shipped_dir(spec.package) if spec.package else None
     searched: list[str] = []
+    refused: Path | None = None
 
-    as_written = Path(written)
+    def accept(candidate: Path) -> bool:
+        nonlocal refused
+        if sandbox is None or sandbox.contains(candidate):
+            return True
+        refused = refused or candidate
+        return False
+
+    # "..\\..\\x" climbs out on Windows; judge the path with either separator
+    as_written = Path(written.replace("\\", "/"))
     if not as_written.is_absolute():
-        candidate = base / as_written
-        searched.append(f"{candidate} (as written, next to the grammar)")
-        if candidate.is_file():
+        candidate = base / written
+        searched.append(f"{base / written_shown} (as written, next to the grammar)")
+        if is_regular_file(candidate) and accept(candidate):
             return candidate
+        as_written = base / as_written
     else:
-        searched.append(f"{as_written} (as written)")
-        if as_written.is_file():
+        searched.append(f"{written_shown} (as written)")
+        if is_regular_file(as_written) and accept(as_written):
             return as_written
+    # a name with a NUL byte names no file at all: "not found", not "outside"
+    escapes = sandbox is not None and "\x00" not in written and not sandbox.contains(as_written)
 
     parts = _components(written)
     variants = _name_variants(parts, spec.suffix)
@@ -163,7 +211,9 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
     folders = [(base, "the grammar's folder")]
     if shipped is not None:
         folders.append((shipped, f"shipped {spec.description}s"))
-    names = ", ".join(str(v) for v in variants if len(v.parts) == 1)
+    if sandbox is not None:
+        folders.extend((folder, "allowed folder") for folder in sandbox.allowed)
+    names = ", ".join(shown(str(v)) for v in variants if len(v.parts) == 1)
     how = (f"as written, then by name: {names} (longest trailing path first)"
            if len(parts) > 1 else f"by name: {names}")
     searched.extend(f"{folder} ({label}): {how}" for folder, label in folders)
@@ -171,8 +221,10 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
         for folder, _ in folders:
             for variant in group:
                 found = _match_in(folder, variant)
-                if found is not None:
+                if found is not None and accept(found):
                     return found
+    if sandbox is not None and (escapes or refused is not None):
+        raise sandbox.refusal(spec.description, written, refused)
     if spec.package is not None and shipped is None:
         searched.append(f"package {spec.package} (not installed)")
-    raise ResourceNotFoundError(spec.description, written, searched)
+    raise ResourceNotFoundError(spec.description, written_shown, searched)

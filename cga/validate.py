@@ -11,25 +11,30 @@ check. All problems are reported, not only the first.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 from . import ast
 from .binding import bind_arguments
-from .errors import CGAError, DerivationError, ResourceNotFoundError, SourceError
+from .errors import (CGAError, DerivationError, ResourceAccessError, ResourceNotFoundError,
+                     SourceError)
 from .evaluator import (check_percentages, check_successors, evaluate_units,
                         evaluate_variables, index_rules, start_symbol)
 from .expressions import ATTRIBUTES, UNKNOWN, Namespace, Value, evaluate
 from .lot import lot_from_call
 from .resources import resolve_resource
+from .sandbox import Sandbox
 from cga.operations import OperationRegistry, UnknownOperation
 
 __all__ = ["check_grammar", "check_file"]
 
 
 class _Checker:
-    def __init__(self, grammar: ast.Grammar, base_dir: Path, operations: OperationRegistry):
+    def __init__(self, grammar: ast.Grammar, base_dir: Path, operations: OperationRegistry,
+                 sandbox: Sandbox):
         self.grammar = grammar
         self.base_dir = base_dir
+        self.sandbox = sandbox
         self.operations = operations
         self.problems: list[CGAError] = []
         self.units = 1.0
@@ -98,14 +103,16 @@ class _Checker:
             value = args.get(param.name)
             if param.kind == "path" and isinstance(value, str):
                 try:
-                    resolve_resource(value, "rules", base_dir=self.base_dir)
-                except ResourceNotFoundError as error:
+                    resolve_resource(value, "rules", base_dir=self.base_dir,
+                                     sandbox=self.sandbox)
+                except (ResourceNotFoundError, ResourceAccessError) as error:
                     span = next((a.span for a, v in zip(call.args, values) if v == value), None)
                     raise DerivationError(str(error), span or call.span) from None
 
 
 def check_grammar(grammar: ast.Grammar, *, base_dir: str | Path | None = None,
-                  operations: OperationRegistry | None = None) -> list[CGAError]:
+                  operations: OperationRegistry | None = None,
+                  allow_paths: Sequence[str | Path] = ()) -> list[CGAError]:
     """All static problems of a parsed grammar, in source order of the checks.
 
     Parameters
@@ -116,6 +123,9 @@ def check_grammar(grammar: ast.Grammar, *, base_dir: str | Path | None = None,
         Folder rule-table paths are resolved from (default: the grammar file's folder).
     operations:
         Operation table (default: the built-in operations).
+    allow_paths:
+        Folders besides ``base_dir``'s tree and the shipped data that files may be read
+        from, as in a build (:mod:`cga.sandbox`).
 
     Returns
     -------
@@ -124,11 +134,11 @@ def check_grammar(grammar: ast.Grammar, *, base_dir: str | Path | None = None,
     """
     folder = Path(base_dir) if base_dir is not None else Path(grammar.file).parent
     table = (operations or OperationRegistry()).copy()
-    return _Checker(grammar, folder, table).run()
+    return _Checker(grammar, folder, table, Sandbox.for_grammar(folder, allow_paths)).run()
 
 
-def check_file(path: str | Path, *, operations: OperationRegistry | None = None
-               ) -> list[CGAError]:
+def check_file(path: str | Path, *, operations: OperationRegistry | None = None,
+               allow_paths: Sequence[str | Path] = ()) -> list[CGAError]:
     """Parse and check a grammar file; source errors come with the file's text attached.
 
     Raises
@@ -143,7 +153,7 @@ def check_file(path: str | Path, *, operations: OperationRegistry | None = None
     text = read_grammar(file)
     try:
         problems = check_grammar(parse(text, str(file)), base_dir=file.parent,
-                                 operations=operations)
+                                 operations=operations, allow_paths=allow_paths)
     except SourceError as error:
         problems = [error]
     for problem in problems:

@@ -20,7 +20,7 @@ from cga.resources import resolve_resource
 from cga.shape import Shape
 
 from .base import Child, Operation, OperationContext, Param
-from .furniture.library import ModelLibrary, default_library
+from .furniture.library import ModelLibrary, default_library, grammar_library
 from .furniture.passage import PASSAGE_WIDTH
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
 from .furniture.solver import furnish_plan
@@ -183,14 +183,14 @@ def _rules(ctx: OperationContext, path: Path) -> FurnitureRules:
 
 def _library(ctx: OperationContext) -> ModelLibrary:
     """The build's model library (``ctx.library``); a hand-made context without one gets
-    the grammar's folder and its ``models/``, then the shipped models, created on first
-    use and shared through ``ctx.cache``."""
+    the grammar's folder and its ``models/``, then each allowed folder (``--allow-path``)
+    and its ``models/``, then the shipped models, read only inside ``ctx.sandbox``,
+    created on first use and shared through ``ctx.cache``."""
     if ctx.library is not None:
         return ctx.library
     library = ctx.cache.get(LIBRARY_CACHE_KEY)
     if library is None:
-        extra = [ctx.base_dir, ctx.base_dir / "models"] if ctx.base_dir is not None else []
-        library = ctx.cache[LIBRARY_CACHE_KEY] = default_library(extra)
+        library = ctx.cache[LIBRARY_CACHE_KEY] = grammar_library(ctx.base_dir, ctx.sandbox)
     return library
 
 

@@ -32,6 +32,7 @@ from cga.shape import Geometry, Scope
 if TYPE_CHECKING:  # pragma: no cover
     from cga.model import FloorPlan
     from cga.operations.furniture.library import ModelLibrary
+    from cga.sandbox import Sandbox
     from cga.shape import Shape
 
 __all__ = ["REQUIRED", "Param", "Child", "OperationContext", "Operation"]
@@ -93,7 +94,8 @@ class OperationContext:
     grammar has no file), where a grammar keeps its own furniture models. ``library`` is
     the build's furniture model library, shared with the meshing layer so each model is
     loaded once per build (None in a hand-made context: ``add_furniture`` then makes one
-    from ``base_dir``).
+    from ``base_dir``). ``sandbox`` holds the folders files may be read from
+    (:mod:`cga.sandbox`); None reads any.
     """
 
     rng: np.random.Generator
@@ -107,6 +109,7 @@ class OperationContext:
     strict: bool = False
     base_dir: Path | None = None
     library: "ModelLibrary | None" = None
+    sandbox: "Sandbox | None" = None
 
 
 class Operation:

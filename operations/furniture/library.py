@@ -23,12 +23,16 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import trimesh
 
 from cga.errors import CGAError, ResourceNotFoundError
-from cga.resources import shipped_dir
+from cga.resources import is_regular_file, shipped_dir
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cga.sandbox import Sandbox
 
 __all__ = [
     "DEFAULT_COLOR",
@@ -37,6 +41,7 @@ __all__ = [
     "ModelFileError",
     "ModelLibrary",
     "default_library",
+    "grammar_library",
     "grammar_model_dirs",
     "is_convex_part",
     "load_model",
@@ -141,6 +146,9 @@ class ModelLibrary:
     search_dirs
         Folders holding ``<name>.obj`` files, most specific first. Folders that do not
         exist are skipped (and still listed when a model is not found).
+    sandbox
+        The folders a model file may lie in after following links (:mod:`cga.sandbox`);
+        a file that links out of them is refused. None loads any file.
 
     Notes
     -----
@@ -150,8 +158,9 @@ class ModelLibrary:
     Each folder is listed once, on its first lookup; a library is meant for one build.
     """
 
-    def __init__(self, search_dirs: Sequence[Path]):
+    def __init__(self, search_dirs: Sequence[Path], sandbox: "Sandbox | None" = None):
         self.search_dirs: tuple[Path, ...] = tuple(Path(d) for d in search_dirs)
+        self.sandbox = sandbox
         self._index: dict[Path, dict[str, Path]] = {}
         self._by_path: dict[Path, FurnitureModel] = {}
         self._by_name: dict[str, FurnitureModel] = {}
@@ -163,6 +172,8 @@ class ModelLibrary:
         ------
         ResourceNotFoundError
             No folder holds a matching file; the message lists every folder searched.
+        ResourceAccessError
+            The file found links out of the sandbox.
         ModelFileError
             The file found cannot be loaded.
         """
@@ -189,6 +200,8 @@ class ModelLibrary:
             for folder in self.search_dirs:
                 path = self._folder_index(folder).get(stem)
                 if path is not None:
+                    if self.sandbox is not None and not self.sandbox.contains(path):
+                        raise self.sandbox.refusal("model", str(path))
                     return path
         raise ResourceNotFoundError("furniture model", name,
                                     [str(d) for d in self.search_dirs])
@@ -206,7 +219,7 @@ class ModelLibrary:
             index = {}
             if folder.is_dir():
                 for path in sorted(folder.iterdir()):
-                    if path.suffix.lower() == ".obj" and path.is_file():
+                    if path.suffix.lower() == ".obj" and is_regular_file(path):
                         index.setdefault(normalize_name(path.stem), path)
             self._index[folder] = index
         return index
@@ -316,8 +329,22 @@ def grammar_model_dirs(grammar_file: Path) -> list[Path]:
     return [folder, folder / "models"]
 
 
-def default_library(extra_dirs: Iterable[Path] = ()) -> ModelLibrary:
+def default_library(extra_dirs: Iterable[Path] = (), sandbox: "Sandbox | None" = None
+                    ) -> ModelLibrary:
     """A library searching ``extra_dirs`` (in order) and then the shipped models
-    (package ``cga.models``, found with :func:`cga.resources.shipped_dir`)."""
+    (package ``cga.models``, found with :func:`cga.resources.shipped_dir`), reading only
+    inside ``sandbox`` when one is given."""
     shipped = shipped_dir("cga.models")
-    return ModelLibrary([*map(Path, extra_dirs), *([shipped] if shipped else [])])
+    return ModelLibrary([*map(Path, extra_dirs), *([shipped] if shipped else [])], sandbox)
+
+
+def grammar_library(grammar_dir: Path | None, sandbox: "Sandbox | None" = None
+                    ) -> ModelLibrary:
+    """The model library of a build: the grammar's folder and its ``models/``, then each
+    folder the user allowed (``--allow-path``) and its ``models/``, then the shipped
+    models; reading only inside ``sandbox``."""
+    folders = [Path(grammar_dir)] if grammar_dir is not None else []
+    if sandbox is not None:
+        folders.extend(sandbox.allowed)
+    return default_library([d for folder in folders for d in (folder, folder / "models")],
+                           sandbox)
