@@ -3,15 +3,19 @@
 Everything the evaluator would reject that does not depend on a shape is checked here,
 for every rule and every branch (a derivation only visits the branches it takes):
 unknown operations, argument counts, names and kinds, undefined variables, successor
-arity and split parts, stochastic percentages, the ``Lot:`` shape and the rule tables
-named by path arguments. Shape attributes (``scope.sx``, ``area``, ...) and ``[a;b]``
+arity and split parts, stochastic percentages, the ``Lot:`` shape, argument values no
+shape could accept (``extrude(-3)``, ``wallWidth = 0``; :meth:`Operation.check_values`),
+and the files arguments name: rule tables are read and checked and every model a
+furniture table names is loaded (:meth:`Operation.check_files`), inside the same
+sandbox as a build (:mod:`cga.sandbox`). Shape attributes (``scope.sx``, ``area``, ...) and ``[a;b]``
 draws inside rules are unknown statically; arguments that depend on them skip the kind
 check. All problems are reported, not only the first.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import contextlib
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from . import ast
@@ -25,6 +29,7 @@ from .lot import lot_from_call
 from .resources import resolve_resource
 from .sandbox import Sandbox
 from cga.operations import OperationRegistry, UnknownOperation
+from cga.operations.base import CheckContext
 
 __all__ = ["check_grammar", "check_file"]
 
@@ -37,6 +42,7 @@ class _Checker:
         self.sandbox = sandbox
         self.operations = operations
         self.problems: list[CGAError] = []
+        self.cache: dict[str, object] = {}
         self.units = 1.0
 
     def attempt(self, check, *args) -> object:
@@ -99,15 +105,34 @@ class _Checker:
             value = self.attempt(evaluate, arg.value, ns)
             values.append(UNKNOWN if value is None else value)
         args = bind_arguments(operation, call, values, units=self.units)
-        for param in operation.params:
-            value = args.get(param.name)
-            if param.kind == "path" and isinstance(value, str):
-                try:
-                    resolve_resource(value, "rules", base_dir=self.base_dir,
-                                     sandbox=self.sandbox)
-                except (ResourceNotFoundError, ResourceAccessError) as error:
-                    span = next((a.span for a, v in zip(call.args, values) if v == value), None)
-                    raise DerivationError(str(error), span or call.span) from None
+        with _at(call):
+            operation.check_values(args, self.units)
+            operation.check_files(args, CheckContext(
+                units=self.units, resolve=self.resolver(call, values), base_dir=self.base_dir,
+                sandbox=self.sandbox, cache=self.cache))
+
+    def resolver(self, call: ast.OpCall, values: list[object]):
+        """``resolve`` for one call: a missing or refused file is reported at the argument
+        that names it."""
+        def resolve(value: str, kind: str = "rules") -> Path:
+            try:
+                return resolve_resource(value, kind, base_dir=self.base_dir,
+                                        sandbox=self.sandbox)
+            except (ResourceNotFoundError, ResourceAccessError) as error:
+                span = next((a.span for a, v in zip(call.args, values) if v == value), None)
+                raise DerivationError(str(error), span or call.span) from None
+        return resolve
+
+
+@contextlib.contextmanager
+def _at(call: ast.OpCall) -> Iterator[None]:
+    """Give a source error raised without a position the call's span, as a build does."""
+    try:
+        yield
+    except SourceError as error:
+        if error.span is None:
+            error.span = call.span
+        raise
 
 
 def check_grammar(grammar: ast.Grammar, *, base_dir: str | Path | None = None,

@@ -19,7 +19,7 @@ from cga.model import FloorPlan
 from cga.resources import resolve_resource
 from cga.shape import Shape
 
-from .base import Child, Operation, OperationContext, Param
+from .base import CheckContext, Child, Operation, OperationContext, Param, is_number
 from .furniture.library import ModelLibrary, default_library, grammar_library
 from .furniture.passage import PASSAGE_WIDTH
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
@@ -88,6 +88,24 @@ class AddFurniture(Operation):
     doc = ("add_furniture(rules.csv, wallWidth>windowWidth>windowHigh, doorWidth, doorHeight, "
            "steeringIterations, clearanceTries): furnish every typed room of the floor")
 
+    def check_values(self, args: dict[str, Any], units: float) -> None:
+        passage, steering = args["passage_width"], args["steeringIterations"]
+        if is_number(passage) and not passage >= 0:
+            raise DerivationError(f"passage_width must not be negative, got {passage / units:g}",
+                                  hint="use 0 to switch the passage rule off")
+        if is_number(steering) and steering > MAX_STEERING_ITERATIONS:
+            raise DerivationError(
+                f"steeringIterations must be at most {MAX_STEERING_ITERATIONS:,}, got "
+                f"{steering:,}",
+                hint="steering settles within a few hundred rounds; 10 is the usual value")
+
+    def check_files(self, args: dict[str, Any], ctx: CheckContext) -> None:
+        """The table loads and every model it names is found and loads."""
+        if not isinstance(args["rules"], str):
+            return
+        rules = _rules(ctx, Path(ctx.resolve(args["rules"], "rules")))
+        _models(rules, _library(ctx))
+
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
         plan = shape.plan
         if plan is None:
@@ -98,15 +116,7 @@ class AddFurniture(Operation):
             raise DerivationError(
                 "add_furniture needs typed rooms, but no room of this floor has a type",
                 ctx.span, hint="apply type_rooms(...) before add_furniture")
-        if args["passage_width"] < 0:
-            raise DerivationError(
-                f"passage_width must not be negative, got {args['passage_width'] / ctx.units:g}",
-                ctx.span, hint="use 0 to switch the passage rule off")
-        if args["steeringIterations"] > MAX_STEERING_ITERATIONS:
-            raise DerivationError(
-                f"steeringIterations must be at most {MAX_STEERING_ITERATIONS:,}, got "
-                f"{args['steeringIterations']:,}", ctx.span,
-                hint="steering settles within a few hundred rounds; 10 is the usual value")
+        self.check_values(args, ctx.units)
         path = Path(ctx.resolve(args["rules"], "rules"))
         furnished = _furnish(plan, _rules(ctx, path), _library(ctx), ctx.rng, ctx.units,
                              args["steeringIterations"], args["clearanceTries"],
@@ -172,7 +182,7 @@ def _furnish(plan: FloorPlan, rules: FurnitureRules, library: ModelLibrary,
     return plan.with_changes(furniture=furniture, diagnostics=plan.diagnostics + diagnostics)
 
 
-def _rules(ctx: OperationContext, path: Path) -> FurnitureRules:
+def _rules(ctx: OperationContext | CheckContext, path: Path) -> FurnitureRules:
     """The parsed table, read once per build."""
     key = f"furniture_rules:{path.resolve()}"
     rules = ctx.cache.get(key)
@@ -181,7 +191,7 @@ def _rules(ctx: OperationContext, path: Path) -> FurnitureRules:
     return rules
 
 
-def _library(ctx: OperationContext) -> ModelLibrary:
+def _library(ctx: OperationContext | CheckContext) -> ModelLibrary:
     """The build's model library (``ctx.library``); a hand-made context without one gets
     the grammar's folder and its ``models/``, then each allowed folder (``--allow-path``)
     and its ``models/``, then the shipped models, read only inside ``ctx.sandbox``,

@@ -35,7 +35,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from cga.sandbox import Sandbox
     from cga.shape import Shape
 
-__all__ = ["REQUIRED", "Param", "Child", "OperationContext", "Operation"]
+__all__ = ["REQUIRED", "Param", "Child", "OperationContext", "CheckContext", "Operation",
+           "is_number"]
 
 
 class _Required:
@@ -112,6 +113,25 @@ class OperationContext:
     sandbox: "Sandbox | None" = None
 
 
+@dataclass
+class CheckContext:
+    """What :meth:`Operation.check_files` may use in ``cga check`` (no shape, no random
+    stream): ``units``, ``resolve`` as in :class:`OperationContext`, the grammar's folder,
+    the sandbox and a cache shared by all checks of one grammar."""
+
+    units: float
+    resolve: Callable[[str, str], Any]
+    base_dir: Path | None = None
+    sandbox: "Sandbox | None" = None
+    cache: dict[str, Any] = field(default_factory=dict)
+    library: "ModelLibrary | None" = None
+
+
+def is_number(value: Any) -> bool:
+    """Whether ``value`` is a known number (not a bool, not ``UNKNOWN`` in a static check)."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
 class Operation:
     """Base class of grammar operations.
 
@@ -130,6 +150,19 @@ class Operation:
 
     def apply(self, shape: "Shape", args: dict[str, Any], ctx: OperationContext) -> list[Child]:
         raise NotImplementedError
+
+    def check_values(self, args: dict[str, Any], units: float) -> None:
+        """Refuse argument values that no shape could accept (a negative height, a zero
+        wall width), raising :class:`~cga.errors.DerivationError`.
+
+        ``apply`` calls it first; ``cga check`` calls it without geometry, so a value may
+        be :data:`~cga.expressions.UNKNOWN` (it depends on the shape) and is then
+        skipped (:func:`is_number`). The default accepts everything.
+        """
+
+    def check_files(self, args: dict[str, Any], ctx: CheckContext) -> None:
+        """Load the files the arguments name (rule tables, models) as a build would, for
+        ``cga check``; raise the error the build would raise. The default does nothing."""
 
     def signature(self) -> str:
         """Human-readable signature for error messages, e.g. ``extrude(height)``."""

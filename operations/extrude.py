@@ -17,7 +17,7 @@ from shapely.geometry.polygon import orient
 from cga.errors import DerivationError
 from cga.shape import Face, Mass, Shape
 
-from .base import Child, Operation, OperationContext, Param
+from .base import Child, Operation, OperationContext, Param, is_number
 
 __all__ = ["Extrude"]
 
@@ -31,10 +31,14 @@ class Extrude(Operation):
     params = (Param("height", "length", doc="height of the prism"),)
     doc = "extrude(height): footprint polygon → prism of height `height`"
 
-    def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+    def check_values(self, args: dict[str, Any], units: float) -> None:
         height = args["height"]
-        if not height > 0:
-            raise DerivationError(f"extrude height must be positive, got {height / ctx.units:g}")
+        if is_number(height) and not height > 0:
+            raise DerivationError(f"extrude height must be positive, got {height / units:g}")
+
+    def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        self.check_values(args, ctx.units)
+        height = args["height"]
         geometry = shape.geometry
         if isinstance(geometry, Mass):
             mass = Mass(footprint=geometry.footprint, base=geometry.base, height=height)

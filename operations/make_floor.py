@@ -20,7 +20,7 @@ from cga.model import Diagnostic, FloorSettings
 from cga.randomness import stream
 from cga.shape import Mass, Shape
 
-from .base import Child, Operation, OperationContext, Param
+from .base import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
 from .floorplan.bsp import partition
 
@@ -52,7 +52,30 @@ class MakeFloor(Operation):
     doc = ("make_floor(split, wallWidth, numWindows>windowWidth>windowHigh, doorWidth, "
            "doorHeight): partition a floor into split + 1 rooms")
 
+    def check_values(self, args: dict[str, Any], units: float) -> None:
+        count, window_width, window_height = args["windows"]
+        named = {"wallWidth": args["wallWidth"], "windowWidth": window_width,
+                 "windowHigh": window_height, "doorWidth": args["doorWidth"],
+                 "doorHeight": args["doorHeight"]}
+        for name, value in named.items():
+            if is_number(value) and not value > 0:
+                raise DerivationError(f"make_floor {name} must be positive, got {value / units:g}")
+        sill = args["window_sill"]
+        if is_number(sill) and not sill >= 0:
+            raise DerivationError(f"window_sill must not be negative, got {sill / units:g}")
+        lo, hi = args["cut_range"]
+        if is_number(lo) and is_number(hi) and not 0 < lo <= hi < 1:
+            raise DerivationError(f"cut_range must satisfy 0 < lo ≤ hi < 1, got ({lo:g}, {hi:g})")
+        min_width, min_area, wall = args["min_room_width"], args["min_room_area"], args["wallWidth"]
+        if is_number(min_width) and is_number(wall) and not min_width > 2 * wall:
+            raise DerivationError(
+                f"min_room_width ({min_width / units:g}) must be more than twice wallWidth "
+                f"({wall / units:g}), or rooms have no floor left")
+        if is_number(min_area) and not min_area >= 0:
+            raise DerivationError(f"min_room_area must not be negative, got {min_area / units ** 2:g}")
+
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        self.check_values(args, ctx.units)
         mass = shape.geometry
         if not isinstance(mass, Mass) or mass.height <= 0:
             raise DerivationError(
@@ -62,15 +85,7 @@ class MakeFloor(Operation):
         footprint = _footprint(mass.footprint)
         split = args["split"]
         lo, hi = args["cut_range"]
-        if not 0 < lo <= hi < 1:
-            raise DerivationError(f"cut_range must satisfy 0 < lo ≤ hi < 1, got ({lo:g}, {hi:g})")
         min_width, min_area = args["min_room_width"], args["min_room_area"]
-        if min_width <= 2 * settings.wall_thickness:
-            raise DerivationError(
-                f"min_room_width ({min_width / ctx.units:g}) must be more than twice wallWidth "
-                f"({settings.wall_thickness / ctx.units:g}), or rooms have no floor left")
-        if min_area < 0:
-            raise DerivationError(f"min_room_area must not be negative, got {min_area / ctx.units ** 2:g}")
         rng = stream(ctx.seed, ("make_floor", shape.symbol)) if args["same_layout"] else ctx.rng
         index = int(shape.attrs.get("floor", 0))
         try:
@@ -92,20 +107,13 @@ class MakeFloor(Operation):
 
 
 def _settings(args: dict[str, Any], storey: float, units: float) -> FloorSettings:
-    """Floor settings from the arguments, checked against the storey height."""
+    """Floor settings from the arguments (checked by ``check_values``), checked against
+    the storey height."""
     count, window_width, window_height = args["windows"]
     settings = FloorSettings(wall_thickness=args["wallWidth"], windows_per_wall=count,
                              window_width=window_width, window_height=window_height,
                              window_sill=args["window_sill"], door_width=args["doorWidth"],
                              door_height=args["doorHeight"])
-    named = {"wallWidth": settings.wall_thickness, "windowWidth": window_width,
-             "windowHigh": window_height, "doorWidth": settings.door_width,
-             "doorHeight": settings.door_height}
-    for name, value in named.items():
-        if not value > 0:
-            raise DerivationError(f"make_floor {name} must be positive, got {value / units:g}")
-    if settings.window_sill < 0:
-        raise DerivationError(f"window_sill must not be negative, got {settings.window_sill / units:g}")
     clear = storey - settings.slab_thickness
     walls = (f"the walls are {clear / units:g} high (storey {storey / units:g} minus a "
              f"{settings.slab_thickness / units:g} floor slab)")

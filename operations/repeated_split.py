@@ -15,7 +15,7 @@ from typing import Any
 from cga.errors import DerivationError
 from cga.shape import Shape
 
-from .base import Child, Operation, OperationContext, Param
+from .base import Child, Operation, OperationContext, Param, is_number
 from .slicing import check_piece_count, cut, extent
 
 __all__ = ["RepeatedSplit", "slice_count"]
@@ -36,10 +36,14 @@ class RepeatedSplit(Operation):
     max_successors = 2
     doc = "repeated_split(axis, size){First, Rest}: slices of about `size`"
 
+    def check_values(self, args: dict[str, Any], units: float) -> None:
+        size = args["size"]
+        if is_number(size) and not size > 0:
+            raise DerivationError(f"repeated_split size must be positive, got {size / units:g}")
+
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        self.check_values(args, ctx.units)
         axis, size = args["axis"], args["size"]
-        if not size > 0:
-            raise DerivationError(f"repeated_split size must be positive, got {size / ctx.units:g}")
         total = extent(shape, axis)
         n = slice_count(total, size)
         check_piece_count(n, f"repeated_split size {size / ctx.units:g} on an extent of "

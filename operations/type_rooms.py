@@ -27,11 +27,11 @@ from typing import Any, Literal
 import networkx as nx
 import numpy as np
 
-from cga.errors import DerivationError, NoSolutionError
+from cga.errors import DerivationError, NoSolutionError, excerpt
 from cga.model import OUTSIDE, Diagnostic, Door, FloorPlan, Room, Wall, Window
 from cga.shape import Shape
 
-from .base import Child, Operation, OperationContext, Param
+from .base import CheckContext, Child, Operation, OperationContext, Param
 from .roomtyping.assign import Typing, assign_types
 from .roomtyping.backtrack import RoomSet
 from .roomtyping.doors import (Interval, clear_windows, door_centre, door_opening,
@@ -237,15 +237,23 @@ class TypeRooms(Operation):
     doc = ('type_rooms("rules.csv", strict=false, door_position="random"): type the rooms, '
            "build the room graph, cut the doors")
 
+    def check_values(self, args: dict[str, Any], units: float) -> None:
+        position = args["door_position"]
+        if isinstance(position, str) and position.lower() not in DOOR_POSITIONS:
+            raise DerivationError(f"door_position must be one of "
+                                  f"{', '.join(repr(p) for p in DOOR_POSITIONS)}, got "
+                                  f"{excerpt(position)}")
+
+    def check_files(self, args: dict[str, Any], ctx: CheckContext) -> None:
+        if isinstance(args["rules"], str):
+            _cached_table(ctx.resolve(args["rules"], "rules"), ctx.cache)
+
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
         if shape.plan is None:
             raise DerivationError("type_rooms needs a floor made by make_floor",
                                   hint="apply make_floor(...) to this shape first")
+        self.check_values(args, ctx.units)
         position = str(args["door_position"]).lower()
-        if position not in DOOR_POSITIONS:
-            raise DerivationError(f"door_position must be one of "
-                                  f"{', '.join(repr(p) for p in DOOR_POSITIONS)}, got "
-                                  f"{args['door_position']!r}")
         table = _cached_table(ctx.resolve(args["rules"], "rules"), ctx.cache)
         plan = type_plan(shape.plan, table, ctx.rng, units=ctx.units,
                          strict=bool(args["strict"]) or ctx.strict, door_position=position)

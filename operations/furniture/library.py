@@ -18,6 +18,8 @@ the glTF exporter keeps them.
 
 from __future__ import annotations
 
+import io
+import math
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
@@ -28,7 +30,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import trimesh
 
-from cga.errors import CGAError, ResourceNotFoundError
+from cga.errors import CGAError, ResourceNotFoundError, excerpt
 from cga.resources import is_regular_file, shipped_dir
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -39,6 +41,7 @@ __all__ = [
     "DEFAULT_DENSITY",
     "FurnitureModel",
     "ModelFileError",
+    "MAX_MODEL_VERTICES",
     "ModelLibrary",
     "default_library",
     "grammar_library",
@@ -59,6 +62,17 @@ DEFAULT_COLOR = (0.7, 0.7, 0.7)
 _CONVEX_TOLERANCE = 1e-3
 """A part is convex when its volume is within this fraction of its convex hull's."""
 
+MAX_MODEL_VERTICES = 100_000
+"""Most vertices a furniture model file may have (faces: twice as many). The shipped
+models have a few hundred; physics and every export handle each item's mesh."""
+
+_PARSE_ERRORS = (ValueError, IndexError, KeyError, TypeError, AttributeError,
+                 AssertionError, OverflowError, ZeroDivisionError)
+"""What trimesh's OBJ reader raises on malformed text (face indices out of range, a
+word where a number belongs, ...)."""
+
+_VERTEX_LINE = re.compile(r"^[ \t]*v[ \t]", re.MULTILINE)
+_FACE_LINE = re.compile(r"^[ \t]*f[ \t]", re.MULTILINE)
 _SEPARATORS = re.compile(r"[\s_\-]+")
 _TRAILING_NUMBER = re.compile(r"\d+$")
 _HEADER = re.compile(r"^#\s*(density|color)\b(.*)$", re.IGNORECASE)
@@ -261,18 +275,20 @@ def load_model(path: Path) -> FurnitureModel:
         The file cannot be read or parsed, has no faces, or has a bad header value.
     """
     path = Path(path)
+    text = _read_obj_text(path)
     try:
-        text = path.read_text(encoding="utf-8", errors="replace")
-        scene = trimesh.load_scene(str(path), file_type="obj", split_groups=True,
-                                   split_objects=True, group_material=False)
-    except (OSError, ValueError, IndexError) as exc:
-        raise ModelFileError(path, f"cannot read the OBJ file ({exc})") from exc
+        scene = trimesh.load_scene(io.BytesIO(text.encode("utf-8")), file_type="obj",
+                                   split_groups=True, split_objects=True, group_material=False)
+    except _PARSE_ERRORS as exc:
+        raise ModelFileError(path, f"cannot read the OBJ file ({excerpt(str(exc))})") from None
     density, color = _read_header(path, text)
     meshes = [scene.geometry[key] for key in sorted(scene.geometry, key=_natural_key)]
     parts = [m for m in meshes if isinstance(m, trimesh.Trimesh) and len(m.faces)]
     if not parts:
         raise ModelFileError(path, "the file has no faces")
     mesh = trimesh.util.concatenate(parts)
+    if not np.isfinite(mesh.vertices).all():
+        raise ModelFileError(path, "a vertex has a coordinate that is not a finite number")
     lo, hi = mesh.bounds
     offset = -np.array([(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2])
     if np.any(offset != 0):
@@ -295,6 +311,41 @@ def load_model(path: Path) -> FurnitureModel:
     )
 
 
+def _read_obj_text(path: Path) -> str:
+    """The OBJ file as text: UTF-8 (a byte-order mark is dropped), any line ending,
+    within :data:`MAX_MODEL_VERTICES`.
+
+    Reading the text here, rather than letting trimesh open the file, keeps its encoding
+    guess (``charset_normalizer``) from failing on bytes that are not text and keeps it
+    from opening the material libraries a file names (``mtllib``), which could lie
+    outside the sandbox; models take their colours from vertex colours and ``# color``.
+
+    Raises
+    ------
+    ModelFileError
+        The file cannot be read, is not UTF-8 text (naming the byte), or has too many
+        vertices or faces.
+    """
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise ModelFileError(path, f"cannot read the OBJ file ({exc.strerror})") from None
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise ModelFileError(path, f"line {line}: not UTF-8 text (byte {exc.start} cannot be "
+                                   f"decoded); save the model as UTF-8 OBJ") from None
+    text = text.replace("\r\n", "\n").replace("\r", "\n")
+    vertices = len(_VERTEX_LINE.findall(text))
+    faces = len(_FACE_LINE.findall(text))
+    if vertices > MAX_MODEL_VERTICES or faces > 2 * MAX_MODEL_VERTICES:
+        raise ModelFileError(path, f"{vertices:,} vertices and {faces:,} faces; a furniture "
+                                   f"model may have at most {MAX_MODEL_VERTICES:,} vertices "
+                                   f"and {2 * MAX_MODEL_VERTICES:,} faces (docs/limits.md)")
+    return text
+
+
 def _read_header(path: Path, text: str) -> tuple[float, tuple[float, float, float]]:
     density, color = DEFAULT_DENSITY, DEFAULT_COLOR
     for number, line in enumerate(text.splitlines(), start=1):
@@ -307,14 +358,16 @@ def _read_header(path: Path, text: str) -> tuple[float, tuple[float, float, floa
         except ValueError:
             numbers = []
         if key == "density":
-            if len(numbers) != 1 or not numbers[0] > 0:
+            if len(numbers) != 1 or not 0 < numbers[0] < math.inf:
                 raise ModelFileError(path, f"line {number}: '# density' needs one positive "
-                                           f"number in kg/m³, got {match.group(2).strip()!r}")
+                                           f"finite number in kg/m³, got "
+                                           f"{excerpt(match.group(2).strip())}")
             density = numbers[0]
         else:
             if len(numbers) != 3 or not all(0 <= c <= 1 for c in numbers):
                 raise ModelFileError(path, f"line {number}: '# color' needs three numbers "
-                                           f"in 0..1 (r g b), got {match.group(2).strip()!r}")
+                                           f"in 0..1 (r g b), got "
+                                           f"{excerpt(match.group(2).strip())}")
             color = (numbers[0], numbers[1], numbers[2])
     return density, color
 
