@@ -189,6 +189,21 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+_MAX_LINE = 1_000
+"""Longest line of an error message printed; messages quote short excerpts of inputs
+(:func:`cga.errors.excerpt`) and this is the last guard for any that does not."""
+
+
+def _bounded(message: str) -> str:
+    """``message`` with control characters (but line ends) escaped and lines cut at
+    :data:`_MAX_LINE` characters, so no input can flood or drive the terminal."""
+    lines = []
+    for line in message.split("\n"):
+        line = "".join(ch if ch.isprintable() else repr(ch)[1:-1] for ch in line)
+        lines.append(line if len(line) <= _MAX_LINE else line[:_MAX_LINE] + "…")
+    return "\n".join(lines)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status.
 
@@ -201,7 +216,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return args.run(args)
     except CGAError as error:
-        print(error, file=sys.stderr)
+        print(_bounded(str(error)), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)

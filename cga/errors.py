@@ -70,6 +70,10 @@ class Span:
         return f"{self.file}:{self.line}:{self.column}"
 
 
+_LINE_WINDOW = 120
+"""Most characters of a source line an error excerpt shows."""
+
+
 class CGAError(Exception):
     """Base class of every error caused by user input."""
 
@@ -113,6 +117,12 @@ class SourceError(CGAError):
             return ""
         line = lines[self.span.line - 1].rstrip("\r").replace("\t", " ")
         caret_col = max(self.span.column, 1)
+        if len(line) > _LINE_WINDOW:  # show a window around the caret, not a huge line
+            start = max(0, min(caret_col - 1 - _LINE_WINDOW // 4, len(line) - _LINE_WINDOW))
+            line = ("…" if start else "") + line[start:start + _LINE_WINDOW] + \
+                ("…" if start + _LINE_WINDOW < len(line) else "")
+            caret_col -= start - (1 if start else 0)
+        line = "".join(ch if ch.isprintable() else "?" for ch in line)
         underline = "^" + "~" * max(0, min(self.span.length, len(line) - caret_col + 1) - 1)
         gutter = f"{self.span.line:>4} | "
         return f"{gutter}{line}\n{' ' * (len(gutter) + caret_col - 1)}{underline}"
@@ -131,11 +141,11 @@ class RuleTableError(CGAError):
 
     def __init__(self, message: str, *, file: str, row: int | None = None,
                  column: str | None = None):
-        where = file
+        where = shown(file)
         if row is not None:
             where += f", row {row}"
         if column is not None:
-            where += f", column '{column}'"
+            where += f", column {excerpt(column)}"
         super().__init__(f"{where}: {message}")
         self.file = file
         self.row = row

@@ -33,13 +33,14 @@ from shapely.geometry import MultiPolygon, Polygon, shape as geojson_shape
 from shapely.geometry.polygon import orient
 from shapely.validation import explain_validity
 
-from .errors import DerivationError, ResourceNotFoundError, Span, UsageError, excerpt, shown
+from .errors import (BudgetError, DerivationError, ResourceNotFoundError, Span, UsageError,
+                     excerpt, shown)
 from .resources import is_regular_file
 
 if TYPE_CHECKING:  # pragma: no cover
     from .sandbox import Sandbox
 
-__all__ = ["DEFAULT_LOT", "MAX_EXTENT", "LOT_FORMATS", "validate_lot", "rectangle", "polygon_lot",
+__all__ = ["DEFAULT_LOT", "MAX_EXTENT", "MAX_LOT_VERTICES", "MAX_LOT_FILE_BYTES", "LOT_FORMATS", "validate_lot", "rectangle", "polygon_lot",
            "parse_lot", "load_geojson", "lot_from_call"]
 
 DEFAULT_LOT = (14.0, 10.0)
@@ -49,6 +50,13 @@ MAX_EXTENT = 100_000.0
 """Largest lot side and longest length argument accepted, in metres (100 km). Far beyond
 any building; larger coordinates lose the precision the geometry needs and can stall
 GEOS (an infinite area never converges)."""
+
+MAX_LOT_VERTICES = 1_000
+"""Most corners a lot may have. A building footprint has tens; every storey's BSP, walls
+and rasters grow with the corner count (a 200,000-corner lot ran for minutes)."""
+
+MAX_LOT_FILE_BYTES = 10_000_000
+"""Largest GeoJSON lot file read (10 MB)."""
 
 LOT_FORMATS = ('14x10 (width x depth in metres)', '"rectangle(14, 10)"',
                '"polygon((0,0),(14,0),(14,10),(0,10))"', "a .geojson file with one polygon")
@@ -79,6 +87,13 @@ def validate_lot(polygon: Polygon, what: str = "lot") -> Polygon:
         raise UsageError(f"{what}: expected a shapely Polygon, got {type(polygon).__name__}")
     if polygon.is_empty or len(polygon.exterior.coords) < 4:
         raise UsageError(f"{what}: a lot needs at least 3 distinct corners")
+    if polygon.has_z:
+        raise UsageError(f"{what}: a lot is a plan footprint with (x, z) corners in metres; "
+                         f"these corners have a third coordinate")
+    if len(polygon.exterior.coords) - 1 + sum(len(r.coords) - 1 for r in polygon.interiors) \
+            > MAX_LOT_VERTICES:
+        raise BudgetError(f"{what}: the lot has {len(polygon.exterior.coords) - 1:,} corners; "
+                          f"at most {MAX_LOT_VERTICES:,} are allowed (docs/limits.md)")
     coords = np.asarray(polygon.exterior.coords)
     if not np.isfinite(coords).all():
         raise UsageError(f"{what}: every corner needs finite coordinates")
@@ -142,9 +157,24 @@ def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polyg
     if not is_regular_file(file):
         raise ResourceNotFoundError("lot file", shown(str(path)), [shown(os.path.abspath(file))])
     try:
-        document = json.loads(file.read_text(encoding="utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as error:
-        raise UsageError(f"{file}: not a JSON file ({error})") from None
+        data = file.read_bytes()
+    except OSError as error:
+        raise UsageError(f"{file}: cannot read the lot file ({error.strerror})") from None
+    if len(data) > MAX_LOT_FILE_BYTES:
+        raise BudgetError(f"{file}: the lot file has {len(data):,} bytes; at most "
+                          f"{MAX_LOT_FILE_BYTES:,} are read (docs/limits.md)")
+    try:
+        document = json.loads(data.decode("utf-8-sig"))
+    except UnicodeDecodeError as error:
+        raise UsageError(f"{file}: not UTF-8 text (byte {error.start} cannot be "
+                         f"decoded)") from None
+    except RecursionError:
+        raise UsageError(f"{file}: the JSON is nested too deeply to be GeoJSON") from None
+    except json.JSONDecodeError as error:
+        raise UsageError(f"{file}: not a JSON file ({error.msg} at line {error.lineno} "
+                         f"column {error.colno})") from None
+    except ValueError as error:  # e.g. an integer of more than 4,300 digits
+        raise UsageError(f"{file}: not a usable JSON file ({excerpt(str(error))})") from None
     polygons = _geojson_polygons(document, str(file))
     if len(polygons) != 1:
         raise UsageError(f"{file}: expected exactly one polygon, found {len(polygons)}")
@@ -157,33 +187,70 @@ def _geojson_polygons(document: Any, where: str) -> list[Polygon]:
                          f"or a FeatureCollection")
     kind = document["type"]
     if kind == "FeatureCollection":
-        return [p for feature in document.get("features", [])
-                for p in _geojson_polygons(feature, where)]
+        features = document.get("features", [])
+        if not isinstance(features, list):
+            raise UsageError(f"{where}: 'features' of a FeatureCollection must be a list, "
+                             f"got {type(features).__name__}")
+        return [p for feature in features for p in _geojson_polygons(feature, where)]
     if kind == "Feature":
         geometry = document.get("geometry")
         return [] if geometry is None else _geojson_polygons(geometry, where)
     if kind in ("Polygon", "MultiPolygon"):
+        _check_positions(document.get("coordinates"), kind, where)
         try:
             geometry = geojson_shape(document)
-        except (ValueError, TypeError, IndexError, AttributeError) as error:
-            raise UsageError(f"{where}: malformed {kind} coordinates ({error})") from None
+        except (ValueError, TypeError, IndexError, AttributeError, KeyError) as error:
+            raise UsageError(f"{where}: malformed {kind} coordinates "
+                             f"({excerpt(str(error))})") from None
         return list(geometry.geoms) if isinstance(geometry, MultiPolygon) else [geometry]
     return []
+
+
+def _check_positions(coordinates: Any, kind: str, where: str) -> None:
+    """Every position of a Polygon/MultiPolygon is a pair of numbers ``[x, y]`` and there
+    are at most :data:`MAX_LOT_VERTICES` of them.
+
+    A lot is a plan footprint; a third coordinate (an altitude) has no meaning for it and
+    would only fail later, far from the file.
+    """
+    depth = 3 if kind == "Polygon" else 4
+    count = 0
+    stack = [(coordinates, 1)]
+    while stack:
+        value, level = stack.pop()
+        if not isinstance(value, list):
+            raise UsageError(f"{where}: malformed {kind} coordinates (expected nested lists "
+                             f"of [x, y] positions)")
+        if level < depth:
+            stack.extend((item, level + 1) for item in value)
+            continue
+        if len(value) != 2:
+            raise UsageError(f"{where}: a lot position must be [x, y] in metres, got "
+                             f"{len(value)} coordinates"
+                             + (" (a lot is a plan footprint: drop the height)"
+                                if len(value) == 3 else ""))
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+            raise UsageError(f"{where}: a lot position must be two numbers, got "
+                             f"{excerpt(json.dumps(value))}")
+        count += 1
+        if count > MAX_LOT_VERTICES:
+            raise BudgetError(f"{where}: the lot has more than {MAX_LOT_VERTICES:,} corners; "
+                              f"simplify the footprint (docs/limits.md)")
 
 
 def _parse_call(name: str, inner: str, text: str) -> Polygon:
     if name.lower() == "rectangle":
         match = _RECT_ARGS.match(inner)
         if not match:
-            raise UsageError(f"--lot {text!r}: rectangle takes two numbers, e.g. "
+            raise UsageError(f"--lot {excerpt(text)}: rectangle takes two numbers, e.g. "
                              f"rectangle(14, 10)")
         return rectangle(float(match.group(1)), float(match.group(2)))
     points = _POINT.findall(inner)
     leftover = _POINT.sub("", inner).replace(",", "").strip()
     if not points or leftover:
-        raise UsageError(f"--lot {text!r}: polygon takes corner points, e.g. "
+        raise UsageError(f"--lot {excerpt(text)}: polygon takes corner points, e.g. "
                          f"polygon((0,0),(14,0),(14,10),(0,10))")
-    return polygon_lot([(float(x), float(z)) for x, z in points], f"--lot {text!r}")
+    return polygon_lot([(float(x), float(z)) for x, z in points], f"--lot {excerpt(text)}")
 
 
 def parse_lot(text: str, *, base_dir: str | Path | None = None,
@@ -217,7 +284,7 @@ def parse_lot(text: str, *, base_dir: str | Path | None = None,
         if not path.is_absolute() and base_dir is not None:
             path = Path(base_dir) / path
         return load_geojson(path, sandbox=sandbox)
-    raise UsageError(f"--lot {text!r}: {_expected()}")
+    raise UsageError(f"--lot {excerpt(text)}: {_expected()}")
 
 
 def lot_from_call(name: str, args: Sequence[Any], span: Span, units: float) -> Polygon:
@@ -247,7 +314,7 @@ def lot_from_call(name: str, args: Sequence[Any], span: Span, units: float) -> P
                 raise DerivationError("Lot: polygon takes (x, z) corner pairs, e.g. "
                                       "polygon((0,0),(14,0),(14,10),(0,10))", span)
             return polygon_lot([(number(x), number(z)) for x, z in args], "Lot: polygon")
-    except UsageError as error:
+    except (UsageError, BudgetError) as error:
         raise DerivationError(str(error), span) from None
     raise DerivationError(f"Lot: unknown shape '{name}'", span,
                           hint="use rectangle(width, depth) or polygon((x,z), ...)")

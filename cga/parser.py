@@ -32,7 +32,8 @@ from lark.lark import PostLex
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken, VisitError
 
 from . import ast
-from .errors import CGAError, GrammarSyntaxError, ResourceNotFoundError, Span, UsageError, shown
+from .errors import (BudgetError, CGAError, GrammarSyntaxError, ResourceNotFoundError, Span,
+                     UsageError, shown)
 from .resources import is_folder, is_regular_file
 
 __all__ = ["parse", "parse_file", "read_grammar"]
@@ -85,8 +86,13 @@ def parse(text: str, file: str = "<string>") -> ast.Grammar:
         raise error.with_source(text)
 
 
+MAX_GRAMMAR_BYTES = 1_000_000
+"""Largest grammar file read (1 MB); the thesis grammars have about two kilobytes."""
+
+
 def read_grammar(path: str | Path) -> str:
-    """The text of a ``.grammar`` file (UTF-8).
+    """The text of a ``.grammar`` file (UTF-8, a byte-order mark and any line ending
+    accepted; lines end in ``\n`` in the result).
 
     Raises
     ------
@@ -96,6 +102,8 @@ def read_grammar(path: str | Path) -> str:
         The file cannot be read.
     GrammarSyntaxError
         The file is not UTF-8 text; the span is the first byte that cannot be decoded.
+    BudgetError
+        The file is larger than :data:`MAX_GRAMMAR_BYTES`.
     """
     path = Path(path)
     if is_folder(path):
@@ -107,8 +115,13 @@ def read_grammar(path: str | Path) -> str:
         data = path.read_bytes()
     except OSError as error:
         raise UsageError(f"cannot read grammar file {path}: {error.strerror}") from None
+    if len(data) > MAX_GRAMMAR_BYTES:
+        raise BudgetError(f"{shown(str(path))}: the grammar has {len(data):,} bytes; at most "
+                          f"{MAX_GRAMMAR_BYTES:,} are read (docs/limits.md)")
     try:
-        return data.decode("utf-8")
+        # a byte-order mark is dropped and old Mac line ends (CR only) become "\n"
+        text = data.decode("utf-8-sig")
+        return text.replace("\r\n", "\n").replace("\r", "\n")
     except UnicodeDecodeError as error:
         line = data.count(b"\n", 0, error.start) + 1
         column = error.start - (data.rfind(b"\n", 0, error.start) + 1) + 1

@@ -37,9 +37,15 @@ from collections.abc import Iterator
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
-from cga.errors import RuleTableError
+from cga.errors import BudgetError, RuleTableError, excerpt
+from cga.textfiles import MAX_NAME_LENGTH, control_character, read_table_text
 
-__all__ = ["FurnitureRule", "FurnitureRules", "parse_furniture_rules", "load_furniture_rules"]
+__all__ = ["MAX_FURNITURE_ROWS", "FurnitureRule", "FurnitureRules", "parse_furniture_rules",
+           "load_furniture_rules"]
+
+MAX_FURNITURE_ROWS = 1_000
+"""Most rows a furniture table may have (docs/limits.md). The shipped tables have about
+a hundred; every row is an item to place in each room of its type."""
 
 _NULL = {"", "<null>", "null", "none"}
 _TRUE = {"true", "1", "yes", "y", "wahr"}
@@ -192,13 +198,11 @@ def load_furniture_rules(path: str | Path) -> FurnitureRules:
     ------
     RuleTableError
         Malformed table, naming the file, row and column.
+    BudgetError
+        More than :data:`MAX_FURNITURE_ROWS` rows, or a file larger than
+        :data:`cga.textfiles.MAX_TABLE_BYTES`.
     """
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise RuleTableError(f"not UTF-8 text ({exc.reason})", file=str(path)) from None
-    return parse_furniture_rules(text, file=str(path))
+    return parse_furniture_rules(read_table_text(path), file=str(path))
 
 
 def parse_furniture_rules(text: str, *, file: str = "<rules>") -> FurnitureRules:
@@ -208,14 +212,17 @@ def parse_furniture_rules(text: str, *, file: str = "<rules>") -> FurnitureRules
     if not lines:
         raise RuleTableError("the table is empty; expected a header row "
                              "'Room;Name;isInCorner;...'", file=file)
+    if len(lines) > MAX_FURNITURE_ROWS + 1:
+        raise BudgetError(f"{file}: the table has {len(lines) - 1:,} rows; at most "
+                          f"{MAX_FURNITURE_ROWS:,} are allowed (docs/limits.md)")
     header_row, header_line = lines[0]
     delimiter = _sniff_delimiter(header_line)
-    columns = _header_columns(next(csv.reader([header_line], delimiter=delimiter)), file,
+    columns = _header_columns(_split(header_line, delimiter, file, header_row), file,
                               header_row)
     rules: list[FurnitureRule] = []
     decimal_comma = delimiter != ","
     for row, line in lines[1:]:
-        cells = next(csv.reader(io.StringIO(line), delimiter=delimiter))
+        cells = _split(line, delimiter, file, row)
         if len(cells) > len(columns) and any(c.strip() for c in cells[len(columns):]):
             raise RuleTableError(f"{len(cells)} cells but the header has {len(columns)} columns",
                                  file=file, row=row)
@@ -223,6 +230,8 @@ def parse_furniture_rules(text: str, *, file: str = "<rules>") -> FurnitureRules
         for (header, key), cell in zip(columns, cells):
             if key is not None:
                 values[key] = _convert(key, cell.strip(), decimal_comma, file, row, header)
+        for key in ("room", "name", "pair_with"):
+            _check_name(values.get(key), key, file, row)
         for key in ("room", "name"):
             if not values.get(key):
                 raise RuleTableError(f"the {key} cell is empty", file=file, row=row,
@@ -230,6 +239,29 @@ def parse_furniture_rules(text: str, *, file: str = "<rules>") -> FurnitureRules
         rules.append(FurnitureRule(row=row, **values))  # type: ignore[arg-type]
     checked = _check_rules(rules, file)
     return FurnitureRules(tuple(checked), file)
+
+
+def _split(line: str, delimiter: str, file: str, row: int) -> list[str]:
+    """The cells of one line (quotes as in CSV)."""
+    try:
+        return next(csv.reader(io.StringIO(line), delimiter=delimiter))
+    except csv.Error as exc:  # a cell over the csv module's field limit (131,072)
+        raise RuleTableError(f"cannot split the row into cells ({exc})", file=file,
+                             row=row) from None
+
+
+def _check_name(value: object, key: str, file: str, row: int) -> None:
+    """A room type or item name: printable and at most MAX_NAME_LENGTH characters."""
+    if not isinstance(value, str):
+        return
+    column = _pretty(key)
+    bad = control_character(value)
+    if bad is not None:
+        raise RuleTableError(f"a control character ({bad}) in {excerpt(value)}; names must be "
+                             f"printable text", file=file, row=row, column=column)
+    if len(value) > MAX_NAME_LENGTH:
+        raise RuleTableError(f"the name {excerpt(value)} is longer than {MAX_NAME_LENGTH} "
+                             f"characters", file=file, row=row, column=column)
 
 
 def _sniff_delimiter(header: str) -> str:
@@ -254,10 +286,11 @@ def _header_columns(cells: list[str], file: str, row: int) -> list[tuple[str, st
             close = difflib.get_close_matches(name.lower(), list(_HEADER_TO_FIELD), n=1)
             hint = (f"; did you mean '{_pretty(_HEADER_TO_FIELD[close[0]])}'?" if close
                     else f"; known columns: {', '.join(_pretty(k) for k in _COLUMNS)}")
-            raise RuleTableError(f"unknown column '{name}'{hint}", file=file, row=row,
+            raise RuleTableError(f"unknown column {excerpt(name)}{hint}", file=file, row=row,
                                  column=name or f"#{index + 1}")
         if key in seen:
-            raise RuleTableError(f"column given twice ('{seen[key]}' and '{name}')", file=file,
+            raise RuleTableError(f"column given twice ({excerpt(seen[key])} and "
+                                 f"{excerpt(name)})", file=file,
                                  row=row, column=name)
         seen[key] = name
         columns.append((name, key))
@@ -288,7 +321,7 @@ def _convert(key: str, cell: str, decimal_comma: bool, file: str, row: int,
             return True
         if lowered in _FALSE:
             return False
-        raise RuleTableError(f"expected true/false (or 1/0), got '{cell}'", file=file, row=row,
+        raise RuleTableError(f"expected true/false (or 1/0), got {excerpt(cell)}", file=file, row=row,
                              column=header)
     if kind == "float":
         if lowered in _NULL:
@@ -297,10 +330,10 @@ def _convert(key: str, cell: str, decimal_comma: bool, file: str, row: int,
         try:
             value = float(text)
         except ValueError:
-            raise RuleTableError(f"expected a number, got '{cell}'", file=file, row=row,
+            raise RuleTableError(f"expected a number, got {excerpt(cell)}", file=file, row=row,
                                  column=header) from None
         if value < 0 or value != value or value == float("inf"):
-            raise RuleTableError(f"expected a distance ≥ 0, got '{cell}'", file=file, row=row,
+            raise RuleTableError(f"expected a distance ≥ 0, got {excerpt(cell)}", file=file, row=row,
                                  column=header)
         return value
     if key == "pair_with":

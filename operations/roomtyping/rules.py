@@ -23,11 +23,13 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from cga.errors import RuleTableError
+from cga.errors import BudgetError, RuleTableError, excerpt
+from cga.textfiles import MAX_NAME_LENGTH, control_character, read_table_text
 
 __all__ = [
     "COLUMNS",
     "DEFAULT_TYPE",
+    "MAX_TYPE_RULES",
     "TypeRule",
     "RuleTable",
     "load_rule_table",
@@ -41,6 +43,10 @@ COLUMNS: tuple[str, ...] = (
 
 DEFAULT_TYPE = "Commonroom"
 """The type of rooms left over once every rule that could be placed has been placed."""
+
+MAX_TYPE_RULES = 200
+"""Most rules (room types) a typing table may have; the backtracker's work grows with
+them (docs/limits.md)."""
 
 _TRUE = frozenset({"1", "true"})
 _FALSE = frozenset({"0", "false"})
@@ -99,16 +105,10 @@ def load_rule_table(path: str | Path) -> RuleTable:
     RuleTableError
         The file cannot be read as UTF-8 text, or its content is malformed
         (see :func:`parse_rule_table`).
+    BudgetError
+        The file is too large (:data:`cga.textfiles.MAX_TABLE_BYTES`).
     """
-    file = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise RuleTableError(f"not UTF-8 text ({exc.reason} at byte {exc.start}); save the "
-                             "table as UTF-8 CSV", file=file) from None
-    except OSError as exc:
-        raise RuleTableError(f"cannot read the file: {exc.strerror}", file=file) from None
-    return parse_rule_table(text, file=file)
+    return parse_rule_table(read_table_text(path), file=str(path))
 
 
 def parse_rule_table(text: str, *, file: str = "<rules>") -> RuleTable:
@@ -139,6 +139,9 @@ def parse_rule_table(text: str, *, file: str = "<rules>") -> RuleTable:
     if not rows:
         raise RuleTableError("the table is empty; it needs a header row "
                              f"'{';'.join(COLUMNS)}' and at least one rule", file=file)
+    if len(rows) > MAX_TYPE_RULES + 1:
+        raise BudgetError(f"{file}: the table has {len(rows) - 1:,} rules; at most "
+                          f"{MAX_TYPE_RULES:,} room types are allowed (docs/limits.md)")
     header_row, header_line = rows[0]
     order = _column_order(header_line, file=file, row=header_row)
     drafts = [_parse_row(line, order, file=file, row=number) for number, line in rows[1:]]
@@ -165,7 +168,7 @@ def _column_order(line: str, *, file: str, row: int) -> list[str]:
         if known is None:
             close = difflib.get_close_matches(name.lower(), canonical, n=1, cutoff=0.6)
             hint = f"; did you mean '{canonical[close[0]]}'?" if close else ""
-            raise RuleTableError(f"unknown column '{name}' in the header{hint} The header "
+            raise RuleTableError(f"unknown column {excerpt(name)} in the header{hint} The header "
                                  f"must be '{';'.join(COLUMNS)}'", file=file, row=row,
                                  column=name)
         if known in order:
@@ -188,38 +191,47 @@ def _parse_row(line: str, order: list[str], *, file: str, row: int) -> TypeRule:
                              column=missing)
     if any(cells[len(order):]):
         raise RuleTableError(f"the row has more cells than the header's {len(order)} "
-                             f"columns: '{';'.join(c for c in cells[len(order):] if c)}'",
+                             f"columns: {excerpt(';'.join(c for c in cells[len(order):] if c))}",
                              file=file, row=row)
     value = dict(zip(order, cells))
 
     def error(column: str, message: str) -> RuleTableError:
         return RuleTableError(message, file=file, row=row, column=column)
 
+    for column in order:
+        bad = control_character(value[column])
+        if bad is not None:
+            raise error(column, f"a control character ({bad}) in {excerpt(value[column])}; "
+                                "names and values must be printable text")
     type_name = value["Type"]
     if not type_name:
         raise error("Type", "the room type is empty")
     if "," in type_name:
-        raise error("Type", f"'{type_name}' is one type per row; a comma is not allowed")
-    size = _number(value["Size"], error("Size", f"bad number '{value['Size']}'"))
+        raise error("Type", f"{excerpt(type_name)} is one type per row; a comma is not allowed")
+    size = _number(value["Size"], error("Size", f"bad number {excerpt(value['Size'])}"))
     if size < 0:
         raise error("Size", f"Size is a minimum area and cannot be negative ({size:g})")
-    prob = _number(value["Prob"], error("Prob", f"bad number '{value['Prob']}'"))
+    prob = _number(value["Prob"], error("Prob", f"bad number {excerpt(value['Prob'])}"))
     if not 0.0 <= prob <= 1.0:
         raise error("Prob", f"Prob is a probability between 0 and 1, got {prob:g}")
     neighbours = tuple(dict.fromkeys(n.strip() for n in value["Neighbours"].split(",")
                                      if n.strip()))
+    for column, name in [("Type", type_name), *(("Neighbours", n) for n in neighbours)]:
+        if len(name) > MAX_NAME_LENGTH:
+            raise error(column, f"the type name {excerpt(name)} is longer than "
+                                f"{MAX_NAME_LENGTH} characters")
     if not neighbours:
         raise error("Neighbours", f"{type_name} lists no neighbour types; list at least "
                                   "one type this room may adjoin, separated by commas")
     outside = _boolean(value["isOutsideConnected"], error(
-        "isOutsideConnected", f"unknown boolean '{value['isOutsideConnected']}'; use "
+        "isOutsideConnected", f"unknown boolean {excerpt(value['isOutsideConnected'])}; use "
                               "0, 1, true or false"))
     optional = _boolean(value["additionRoom"], error(
-        "additionRoom", f"unknown boolean '{value['additionRoom']}'; use 0 (mandatory), "
+        "additionRoom", f"unknown boolean {excerpt(value['additionRoom'])}; use 0 (mandatory), "
                         "1 (optional), true or false"))
     appearance = _count(value["appearance"], error(
         "appearance", f"appearance must be a whole number of rooms, got "
-                      f"'{value['appearance']}'"))
+                      f"{excerpt(value['appearance'])}"))
     if appearance < 1 and not optional:
         raise error("appearance", f"{type_name} is mandatory (additionRoom=0) but "
                                   "appearance is 0; a mandatory type needs at least one room")
@@ -261,7 +273,7 @@ def _resolve_neighbours(drafts: list[TypeRule], *, file: str) -> tuple[TypeRule,
         previous = defined.get(rule.type.lower())
         if previous is not None:
             raise RuleTableError(
-                f"type '{rule.type}' is already defined in row {previous.row}; use "
+                f"type {excerpt(rule.type)} is already defined in row {previous.row}; use "
                 "'appearance' to allow several rooms of one type", file=file, row=rule.row,
                 column="Type")
         defined[rule.type.lower()] = rule
@@ -276,7 +288,7 @@ def _resolve_neighbours(drafts: list[TypeRule], *, file: str) -> tuple[TypeRule,
                 close = difflib.get_close_matches(name.lower(), known, n=1, cutoff=0.6)
                 hint = f"; did you mean '{known[close[0]]}'?" if close else ""
                 raise RuleTableError(
-                    f"neighbour type '{name}' is not defined by any rule{hint} "
+                    f"neighbour type {excerpt(name)} is not defined by any rule{hint} "
                     f"Known types: {', '.join(sorted(known.values()))}", file=file,
                     row=rule.row, column="Neighbours")
             names.append(spelled)
