@@ -132,6 +132,12 @@ class GrammarSyntaxError(SourceError):
     """The grammar text does not follow the language (DESIGN §4)."""
 
 
+class BudgetError(SourceError):
+    """An input would exceed a documented limit (shapes, cells, rows, vertices, depth);
+    raised before the work starts, with the numbers (docs/limits.md). Points into the
+    grammar when a rule asked for the work."""
+
+
 class DerivationError(SourceError):
     """A rule could not be applied: unknown operation, bad argument, recursion too deep."""
 
@@ -180,9 +186,6 @@ class ResourceAccessError(CGAError):
         self.path = path
 
 
-class BudgetError(CGAError):
-    """An input would exceed a documented limit (shapes, cells, rows, vertices, depth);
-    raised before the work starts, with the numbers (docs/limits.md)."""
 
 
 class UsageError(CGAError):

@@ -43,8 +43,8 @@ from shapely.geometry import Polygon
 
 from . import ast
 from .binding import bind_arguments
-from .errors import (DerivationError, ResourceAccessError, ResourceNotFoundError, SourceError,
-                     Span)
+from .errors import (BudgetError, DerivationError, ResourceAccessError, ResourceNotFoundError,
+                     SourceError, Span, UsageError)
 from .expressions import UNKNOWN, Namespace, Value, describe, evaluate, shape_attributes
 from .lot import DEFAULT_LOT, lot_from_call, rectangle
 from .model import Diagnostic
@@ -60,6 +60,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = [
     "DEFAULT_MAX_DEPTH",
+    "MAX_DEPTH_LIMIT",
+    "MAX_SHAPES",
     "DerivedShape",
     "Derivation",
     "Evaluator",
@@ -72,10 +74,20 @@ __all__ = [
     "check_percentages",
     "successor_symbols",
     "check_successors",
+    "check_max_depth",
 ]
 
 DEFAULT_MAX_DEPTH = 64
 """Deepest shape path a derivation may reach before it is reported as runaway recursion."""
+
+MAX_DEPTH_LIMIT = 1_000
+"""Largest depth limit that may be asked for (``--max-depth``). Every shape stores its
+path from the root, so memory grows with the square of the depth; 100,000 took 7.5 GB."""
+
+MAX_SHAPES = 20_000
+"""Most shapes one derivation may make (docs/limits.md). Buildings make hundreds; each
+shape costs meshing and export time, and nested repeats of tiny sizes would make
+millions. Splits refuse before cutting when they would pass it."""
 
 
 @dataclass
@@ -302,6 +314,21 @@ class _Run:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=lambda: defaultdict(float))
     cache: dict[str, Any] = field(default_factory=dict)
+    shapes: int = 1
+
+
+def check_max_depth(max_depth: int) -> None:
+    """Refuse a depth limit outside ``1..MAX_DEPTH_LIMIT``.
+
+    Raises
+    ------
+    UsageError
+        Naming the option and the allowed range.
+    """
+    if isinstance(max_depth, bool) or not isinstance(max_depth, int) \
+            or not 1 <= max_depth <= MAX_DEPTH_LIMIT:
+        raise UsageError(f"--max-depth must be a whole number from 1 to {MAX_DEPTH_LIMIT:,}, "
+                         f"got {max_depth!r}")
 
 
 class Evaluator:
@@ -340,8 +367,7 @@ class Evaluator:
                  sandbox: Sandbox | None = None):
         if seed < 0:
             raise ValueError(f"seed must be non-negative, got {seed}")
-        if max_depth < 1:
-            raise ValueError(f"max_depth must be at least 1, got {max_depth}")
+        check_max_depth(max_depth)
         self.grammar = grammar
         self.seed = int(seed)
         self.units = evaluate_units(grammar) if units is None else float(units)
@@ -450,7 +476,7 @@ class Evaluator:
             rng=rng, units=self.units, resolve=self._resolver(call),
             report=run.diagnostics.append, span=call.span, successor_count=len(successors),
             cache=run.cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir,
-            library=self.library, sandbox=self.sandbox)
+            library=self.library, sandbox=self.sandbox, shapes_left=MAX_SHAPES - run.shapes)
         started = time.perf_counter()
         try:
             children = operation.apply(shape, args, ctx)
@@ -460,6 +486,11 @@ class Evaluator:
             raise
         finally:
             run.timings[operation.name] += time.perf_counter() - started
+        run.shapes += len(children)
+        if run.shapes > MAX_SHAPES:
+            raise BudgetError(f"the derivation made more than {MAX_SHAPES:,} shapes "
+                              f"(docs/limits.md)", call.span,
+                              hint="use larger split sizes or fewer repeats")
         for child in children:
             if not 0 <= child.successor < len(successors):
                 raise IndexError(f"operation {operation.name} produced a child for successor "

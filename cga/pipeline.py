@@ -21,7 +21,7 @@ from typing import Any
 from shapely.geometry import Polygon
 
 from .errors import ExportError, NoSolutionError, SourceError, UsageError
-from .evaluator import DEFAULT_MAX_DEPTH, Evaluator
+from .evaluator import DEFAULT_MAX_DEPTH, Evaluator, check_max_depth
 from .scene import Scene
 
 __all__ = ["STAGES", "build", "default_out_dir", "run_checks", "export_scene"]
@@ -76,8 +76,7 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
         raise UsageError(f"--units must be positive (metres per grammar unit), got {units!r}")
     if not 0 < robot_radius < math.inf:
         raise UsageError(f"--robot-radius must be positive (metres), got {robot_radius!r}")
-    if max_depth < 1:
-        raise UsageError(f"--max-depth must be at least 1, got {max_depth!r}")
+    check_max_depth(max_depth)
     if formats:
         from .export import EXPORTERS
 

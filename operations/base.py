@@ -96,7 +96,9 @@ class OperationContext:
     the build's furniture model library, shared with the meshing layer so each model is
     loaded once per build (None in a hand-made context: ``add_furniture`` then makes one
     from ``base_dir``). ``sandbox`` holds the folders files may be read from
-    (:mod:`cga.sandbox`); None reads any.
+    (:mod:`cga.sandbox`); None reads any. ``shapes_left`` is how many more shapes the
+    derivation may make (:data:`cga.evaluator.MAX_SHAPES`); an operation that can tell in
+    advance that it would make more refuses.
     """
 
     rng: np.random.Generator
@@ -111,6 +113,7 @@ class OperationContext:
     base_dir: Path | None = None
     library: "ModelLibrary | None" = None
     sandbox: "Sandbox | None" = None
+    shapes_left: int | None = None
 
 
 @dataclass

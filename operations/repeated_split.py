@@ -47,7 +47,7 @@ class RepeatedSplit(Operation):
         total = extent(shape, axis)
         n = slice_count(total, size)
         check_piece_count(n, f"repeated_split size {size / ctx.units:g} on an extent of "
-                             f"{total / ctx.units:g}")
+                             f"{total / ctx.units:g}", ctx.shapes_left)
         bounds = [total * i / n for i in range(n)] + [total]
         pieces = cut(shape, axis, list(zip(bounds[:-1], bounds[1:])))
         last = ctx.successor_count - 1

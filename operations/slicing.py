@@ -21,7 +21,7 @@ from collections.abc import Sequence
 from shapely.geometry import Polygon, box
 from shapely.geometry.base import BaseGeometry
 
-from cga.errors import DerivationError
+from cga.errors import BudgetError, DerivationError
 from cga.shape import Face, Geometry, Mass, Scope, Shape
 
 from .faces import face_from_polygon, face_polygon
@@ -37,18 +37,26 @@ MAX_PIECES = 10_000
 otherwise make millions of shapes and never finish."""
 
 
-def check_piece_count(count: int, what: str) -> None:
-    """Refuse a cut into more than :data:`MAX_PIECES` pieces.
+def check_piece_count(count: int, what: str, shapes_left: int | None = None) -> None:
+    """Refuse a cut into more than :data:`MAX_PIECES` pieces, or into more pieces than
+    the derivation's shape budget has left (``shapes_left``, see
+    :data:`cga.evaluator.MAX_SHAPES`), before any piece is cut.
 
     Raises
     ------
     DerivationError
         Naming ``what`` (the size asked for, e.g. ``"repeated_split size 0.001 m on
         16 m"``) and the limit.
+    BudgetError
+        The derivation would exceed its shape budget.
     """
     if count > MAX_PIECES:
         raise DerivationError(f"{what} would make {count:,} pieces; at most "
                               f"{MAX_PIECES:,} are allowed", hint="use a larger size")
+    if shapes_left is not None and count > shapes_left:
+        raise BudgetError(f"{what} would make {count:,} pieces, but the derivation may make "
+                          f"only {shapes_left:,} more shapes (docs/limits.md)",
+                          hint="use larger sizes, or split fewer shapes")
 
 
 def extent(shape: Shape, axis: str) -> float:

@@ -49,8 +49,8 @@ def _pattern(parts: Sequence[tuple[str, float, int]], total: float
     return fixed, floating
 
 
-def layout(total: float, parts: Sequence[tuple[str, float, int]], repeat: bool
-           ) -> list[tuple[float, float, int]]:
+def layout(total: float, parts: Sequence[tuple[str, float, int]], repeat: bool,
+           shapes_left: int | None = None) -> list[tuple[float, float, int]]:
     """Where each part goes along an axis of length ``total``.
 
     Parameters
@@ -62,6 +62,9 @@ def layout(total: float, parts: Sequence[tuple[str, float, int]], repeat: bool
         metres) or ``"relative"`` (size a ratio of ``total``).
     repeat:
         Lay the pattern out repeatedly (``{...}*``).
+    shapes_left:
+        How many more shapes the derivation may make (None: no budget); a repeat that
+        needs more is refused before anything is cut.
 
     Returns
     -------
@@ -83,7 +86,7 @@ def layout(total: float, parts: Sequence[tuple[str, float, int]], repeat: bool
         else:
             count = max(1, math.floor(total / pattern + _EPS))
         check_piece_count(count * len(parts), f"a repeated split pattern of {pattern:g} m "
-                                              f"on an extent of {total:g} m")
+                                              f"on an extent of {total:g} m", shapes_left)
     stretch = 0.0
     if floating > 0:
         stretch = max(0.0, total - count * fixed) / (count * floating)
@@ -124,7 +127,7 @@ class Split(Operation):
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
         axis = args["axis"]
         total = extent(shape, axis)
-        intervals = layout(total, args["parts"], args["repeat"])
+        intervals = layout(total, args["parts"], args["repeat"], ctx.shapes_left)
         pieces = cut(shape, axis, [(start, end) for start, end, _ in intervals])
         return [Child(successor=intervals[k][2], geometry=geometry, scope=scope,
                       attrs={"index": k})
