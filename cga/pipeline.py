@@ -24,10 +24,15 @@ from .errors import ExportError, NoSolutionError, SourceError, UsageError
 from .evaluator import DEFAULT_MAX_DEPTH, Evaluator, check_max_depth
 from .scene import Scene
 
-__all__ = ["STAGES", "build", "default_out_dir", "run_checks", "export_scene"]
+__all__ = ["MAX_ROBOT_RADIUS", "STAGES", "build", "default_out_dir", "run_checks", "export_scene"]
 
 STAGES = ("parse", "derive", "meshing", "physics", "navigability", "export")
 """Pipeline stages as they appear in ``Scene.timings`` (operation timings are the other keys)."""
+
+
+MAX_ROBOT_RADIUS = 5.0
+"""Largest ``--robot-radius`` (m): a robot 10 m across fits through no door, and the
+navigability raster grows with the radius (1e6 asked for petabytes)."""
 
 
 def default_out_dir(name: str) -> Path:
@@ -74,8 +79,9 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
         raise UsageError(f"--seed must be a whole number ≥ 0, got {seed!r}")
     if units is not None and not 0 < units < math.inf:
         raise UsageError(f"--units must be positive (metres per grammar unit), got {units!r}")
-    if not 0 < robot_radius < math.inf:
-        raise UsageError(f"--robot-radius must be positive (metres), got {robot_radius!r}")
+    if not 0 < robot_radius <= MAX_ROBOT_RADIUS:
+        raise UsageError(f"--robot-radius must be positive and at most {MAX_ROBOT_RADIUS:g} m, "
+                         f"got {robot_radius!r}")
     check_max_depth(max_depth)
     if formats:
         from .export import EXPORTERS

@@ -231,6 +231,23 @@ def _polygon(rings: Sequence[np.ndarray]) -> Polygon:
     return polygon if polygon.is_valid else polygon.buffer(0)
 
 
+MAX_GRID_CELLS = 2_000_000
+"""Most cells of one occupancy grid (docs/limits.md): about 70 m × 70 m at 5 cm. A larger
+floor gets coarser cells (:func:`grid_resolution`) instead of gigabytes of raster."""
+
+
+def grid_resolution(resolution: float, width: float, depth: float) -> float:
+    """``resolution``, or the finest coarser cell size (a whole multiple of 1 mm) that
+    keeps a ``width`` × ``depth`` m grid within :data:`MAX_GRID_CELLS`."""
+    if (width / resolution + 1) * (depth / resolution + 1) <= MAX_GRID_CELLS:
+        return resolution
+    coarse = math.sqrt(width * depth / MAX_GRID_CELLS)
+    coarse = max(resolution, math.ceil(coarse * 1000) / 1000)
+    while (width / coarse + 1) * (depth / coarse + 1) > MAX_GRID_CELLS:
+        coarse *= 1.01
+    return coarse
+
+
 def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: float = 0.05,
                    band: tuple[float, float] = (0.05, 1.2), margin: float = 0.5,
                    include_furniture: bool = True) -> OccupancyGrid:
@@ -245,7 +262,8 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
         The scene's nodes (world space); those outside the band are skipped, so the
         whole scene can be passed for every floor.
     resolution
-        Cell size (m).
+        Cell size (m); coarser when the floor would need more than
+        :data:`MAX_GRID_CELLS` cells (the grid's ``resolution`` says which was used).
     band
         Heights above the walking surface (m) between which an obstacle blocks the robot.
     margin
@@ -276,6 +294,7 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
     y0, y1 = plan.floor_y + band[0], plan.floor_y + band[1]
     minx, minz, maxx, maxz = plan.footprint.bounds
     x_min, z_min = minx - margin, minz - margin
+    resolution = grid_resolution(resolution, maxx + margin - x_min, maxz + margin - z_min)
     cols = max(1, math.ceil((maxx + margin - x_min) / resolution - 1e-9))
     rows = max(1, math.ceil((maxz + margin - z_min) / resolution - 1e-9))
     origin = (x_min, -(z_min + rows * resolution))

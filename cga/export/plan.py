@@ -41,10 +41,15 @@ from .drawing import (Arc, Area, Drawing, Point, Polyline, Style, Text, render_p
                       text_width)
 from .palette import hex_color, room_color
 
-__all__ = ["plan_drawing", "export_plans"]
+__all__ = ["MAX_PLAN_PX", "plan_drawing", "export_plans"]
 
 _TARGET_PLAN_PX = 860.0
 _MIN_PX_PER_M, _MAX_PX_PER_M = 28.0, 80.0
+
+MAX_PLAN_PX = 2_400.0
+"""Longest side of the drawn footprint in pixels (docs/limits.md). Plans are drawn at
+28 px/m or more; a footprint longer than about 86 m is drawn smaller instead, so a
+300 m lot does not need a raster of gigabytes."""
 _MARGIN = 48.0
 _HEADER = 64.0
 _FOOTER = 56.0
@@ -105,8 +110,9 @@ def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
         exactly one ``room-label`` text.
     """
     min_x, min_z, max_x, max_z = plan.footprint.bounds
-    scale = min(_MAX_PX_PER_M, max(_MIN_PX_PER_M, _TARGET_PLAN_PX / max(
-        max_x - min_x, max_z - min_z, 1e-9)))
+    extent = max(max_x - min_x, max_z - min_z, 1e-9)
+    scale = min(_MAX_PX_PER_M, max(_MIN_PX_PER_M, _TARGET_PLAN_PX / extent),
+                MAX_PLAN_PX / extent)
     entrance = _entrance_marker(plan, scale)
     if entrance is not None:  # make room for the marker outside the walls
         min_x, min_z, max_x, max_z = unary_union(
