@@ -26,12 +26,16 @@ __all__ = [
     "UsageError",
     "ExportError",
     "EXCERPT_LIMIT",
+    "PATH_LIMIT",
     "excerpt",
     "shown",
 ]
 
 EXCERPT_LIMIT = 80
-"""Most characters of user data (a CSV cell, a path, a header line) an error message quotes."""
+"""Most characters of user data (a CSV cell, a header line, a name) an error message quotes."""
+
+PATH_LIMIT = 300
+"""Most characters of a file path an error message shows (paths are longer than names)."""
 
 
 def excerpt(text: str, limit: int = EXCERPT_LIMIT) -> str:
@@ -49,12 +53,12 @@ def excerpt(text: str, limit: int = EXCERPT_LIMIT) -> str:
     return f"'{shown}'"
 
 
-def shown(text: str) -> str:
-    """``text`` as is when it is short and printable (a path, a name), else its
-    :func:`excerpt`."""
-    if len(text) <= EXCERPT_LIMIT and text.isprintable():
+def shown(text: str, limit: int = EXCERPT_LIMIT) -> str:
+    """``text`` as is when it is at most ``limit`` characters and printable (a path, a
+    name), else its :func:`excerpt`."""
+    if len(text) <= limit and text.isprintable():
         return text
-    return excerpt(text)
+    return excerpt(text, limit)
 
 
 @dataclass(frozen=True)
@@ -147,7 +151,7 @@ class RuleTableError(CGAError):
 
     def __init__(self, message: str, *, file: str, row: int | None = None,
                  column: str | None = None):
-        where = shown(file)
+        where = shown(file, PATH_LIMIT)
         if row is not None:
             where += f", row {row}"
         if column is not None:

@@ -34,7 +34,7 @@ from shapely.geometry.polygon import orient
 from shapely.validation import explain_validity
 
 from .errors import (BudgetError, DerivationError, ResourceNotFoundError, Span, UsageError,
-                     excerpt, shown)
+                     PATH_LIMIT, excerpt, shown)
 from .resources import is_regular_file
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -155,7 +155,8 @@ def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polyg
     if sandbox is not None:
         sandbox.check(file, "lot file")
     if not is_regular_file(file):
-        raise ResourceNotFoundError("lot file", shown(str(path)), [shown(os.path.abspath(file))])
+        raise ResourceNotFoundError("lot file", shown(str(path), PATH_LIMIT),
+                                    [shown(os.path.abspath(file), PATH_LIMIT)])
     try:
         data = file.read_bytes()
     except OSError as error:

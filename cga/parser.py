@@ -32,8 +32,8 @@ from lark.lark import PostLex
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken, VisitError
 
 from . import ast
-from .errors import (BudgetError, CGAError, GrammarSyntaxError, ResourceNotFoundError, Span,
-                     UsageError, shown)
+from .errors import (PATH_LIMIT, BudgetError, CGAError, GrammarSyntaxError,
+                     ResourceNotFoundError, Span, UsageError, shown)
 from .resources import is_folder, is_regular_file
 
 __all__ = ["parse", "parse_file", "read_grammar"]
@@ -109,15 +109,15 @@ def read_grammar(path: str | Path) -> str:
     if is_folder(path):
         raise ResourceNotFoundError("grammar", f"{path} (a folder, not a grammar file)")
     if not is_regular_file(path):  # also a name too long or a symbolic-link loop
-        raise ResourceNotFoundError("grammar", shown(str(path)),
-                                    [shown(os.path.abspath(path))])
+        raise ResourceNotFoundError("grammar", shown(str(path), PATH_LIMIT),
+                                    [shown(os.path.abspath(path), PATH_LIMIT)])
     try:
         data = path.read_bytes()
     except OSError as error:
         raise UsageError(f"cannot read grammar file {path}: {error.strerror}") from None
     if len(data) > MAX_GRAMMAR_BYTES:
-        raise BudgetError(f"{shown(str(path))}: the grammar has {len(data):,} bytes; at most "
-                          f"{MAX_GRAMMAR_BYTES:,} are read (docs/limits.md)")
+        raise BudgetError(f"{shown(str(path), PATH_LIMIT)}: the grammar has {len(data):,} "
+                          f"bytes; at most {MAX_GRAMMAR_BYTES:,} are read (docs/limits.md)")
     try:
         # a byte-order mark is dropped and old Mac line ends (CR only) become "\n"
         text = data.decode("utf-8-sig")

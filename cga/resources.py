@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING
 
-from .errors import ResourceNotFoundError, shown
+from .errors import PATH_LIMIT, ResourceNotFoundError, shown
 
 if TYPE_CHECKING:  # pragma: no cover
     from .sandbox import Sandbox
@@ -176,7 +176,7 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
         raise ValueError(f"unknown resource kind {kind!r}; expected one of "
                          f"{', '.join(RESOURCE_KINDS)}") from None
     written = str(path)
-    written_shown = shown(written)
+    written_shown = shown(written, PATH_LIMIT)
     base = Path(base_dir) if base_dir is not None else Path.cwd()
     shipped = shipped_dir(spec.package) if spec.package else None
     searched: list[str] = []
@@ -213,7 +213,7 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
         folders.append((shipped, f"shipped {spec.description}s"))
     if sandbox is not None:
         folders.extend((folder, "allowed folder") for folder in sandbox.allowed)
-    names = ", ".join(shown(str(v)) for v in variants if len(v.parts) == 1)
+    names = ", ".join(shown(str(v), PATH_LIMIT) for v in variants if len(v.parts) == 1)
     how = (f"as written, then by name: {names} (longest trailing path first)"
            if len(parts) > 1 else f"by name: {names}")
     searched.extend(f"{folder} ({label}): {how}" for folder, label in folders)

@@ -27,7 +27,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import ResourceAccessError, UsageError, excerpt
+from .errors import PATH_LIMIT, ResourceAccessError, UsageError, excerpt
 from .resources import is_folder, shipped_dir
 
 __all__ = ["ALLOW_OPTION", "Sandbox", "real_path"]
@@ -74,7 +74,8 @@ class Sandbox:
                 roots.append((real_path(folder), label))
         for folder in allow_paths:
             if not is_folder(folder):
-                raise UsageError(f"--allow-path {excerpt(str(folder))}: not an existing folder")
+                raise UsageError(f"--allow-path {excerpt(str(folder), PATH_LIMIT)}: not an "
+                                 f"existing folder")
             roots.append((real_path(folder), _ALLOWED))
         return cls(tuple(roots))
 
@@ -117,8 +118,8 @@ class Sandbox:
     def refusal(self, what: str, written: str, path: str | Path | None = None
                 ) -> ResourceAccessError:
         """The error for a ``what`` named ``written`` that lies outside every allowed folder."""
-        where = "" if path is None or str(path) == written else f" ({excerpt(str(path))})"
+        where = "" if path is None or str(path) == written else f" ({excerpt(str(path), PATH_LIMIT)})"
         places = "; ".join(f"{root} ({label})" for root, label in self.roots)
         return ResourceAccessError(
-            f"{what} {excerpt(written)}{where} is outside the folders a build may read "
+            f"{what} {excerpt(written, PATH_LIMIT)}{where} is outside the folders a build may read "
             f"({places}); allow its folder with {ALLOW_OPTION}", path=written)

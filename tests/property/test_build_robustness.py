@@ -7,15 +7,14 @@ widths, window counts and sizes, door sizes, split counts and sizes, extrude hei
 degenerate). The property: :func:`cga.pipeline.build` returns a Scene or raises a
 :class:`~cga.errors.CGAError` with a message, and a :class:`~cga.errors.SourceError`
 points into the grammar. Any other exception is a bug, and so is a build that does not
-finish within :data:`TIME_LIMIT` seconds: each build runs in a forked child process
-so that a hang inside GEOS or numpy (which no Python signal interrupts) is caught too.
+finish within :data:`TIME_LIMIT` seconds or needs more than 2 GB: each build runs in a
+forked child process (``tests/support/forked.py``) so that a hang inside GEOS or numpy
+(which no Python signal interrupts) is caught too.
 """
 
 from __future__ import annotations
 
-import multiprocessing
 import re
-import traceback
 from pathlib import Path
 
 import pytest
@@ -24,6 +23,7 @@ from hypothesis import strategies as st
 
 from cga.errors import CGAError, SourceError
 from cga.pipeline import build
+from forked import run_forked
 
 pytestmark = pytest.mark.slow
 
@@ -97,34 +97,22 @@ def mutated_grammars(draw: st.DrawFn) -> tuple[str, str]:
     return name, text
 
 
-def _child(connection, path: str, options: dict) -> None:
+def _build(path: str, options: dict) -> tuple:
+    """Build in the child: ("scene",) or the CGAError's kind, message and span."""
     try:
         build(path, physics=False, formats=(), quiet=True, **options)
-        outcome = ("scene",)
+        return ("scene",)
     except CGAError as error:
         span = error.span if isinstance(error, SourceError) else None
-        outcome = ("error", type(error).__name__, str(error), isinstance(error, SourceError),
-                   None if span is None else (span.file, span.line, span.column))
-    except BaseException:  # the property under test: anything else is reported as a bug
-        outcome = ("bug", traceback.format_exc())
-    connection.send(outcome)
-    connection.close()
+        return ("error", type(error).__name__, str(error), isinstance(error, SourceError),
+                None if span is None else (span.file, span.line, span.column))
 
 
 def _build_in_child(path: Path, **options) -> tuple:
-    context = multiprocessing.get_context("fork")
-    receive, send = context.Pipe(duplex=False)
-    process = context.Process(target=_child, args=(send, str(path), options))
-    process.start()
-    send.close()
-    try:
-        if not receive.poll(TIME_LIMIT):
-            pytest.fail(f"the build did not finish within {TIME_LIMIT:g} s "
-                        f"({path.name}, {options})")
-        return receive.recv()
-    finally:
-        process.kill()
-        process.join()
+    status, value = run_forked(_build, str(path), options, time_limit=TIME_LIMIT)
+    if status == "timeout":
+        pytest.fail(f"the build did not finish within {TIME_LIMIT:g} s ({path.name}, {options})")
+    return ("bug", value) if status == "bug" else value
 
 
 def check_build(path: Path, text: str, **options) -> None:
