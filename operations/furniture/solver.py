@@ -40,7 +40,7 @@ from .placement import Placer
 from .rules import FurnitureRules
 from .steering import random_start, separation_steering
 
-__all__ = ["PATIENCE", "RoomSite", "RoomResult", "furnish_room", "furnish_plan"]
+__all__ = ["CROWDING", "PATIENCE", "RoomSite", "RoomResult", "furnish_room", "furnish_plan"]
 
 STAGE = "add_furniture"
 PATIENCE = 5
@@ -71,6 +71,35 @@ class RoomResult:
 
     items: tuple[FurnitureItem, ...]
     left_out: tuple[tuple[str, str], ...]
+
+
+CROWDING = 2.0
+"""How many times over the solid items before an item may cover a room's free floor
+before it is left out unsolved: items cannot overlap, so past 1 some must fail, and 2
+leaves room for earlier items that fail and free their share."""
+
+
+def _within_floor(site: RoomSite, specs: Sequence[ItemSpec]
+                  ) -> tuple[list[ItemSpec], list[tuple[str, str]]]:
+    """``specs`` without the solid items whose footprint, added to those of all solid
+    items before them, exceeds :data:`CROWDING` × the room's free floor, and
+    ``(name, reason)`` for each item left out (non-colliding items such as rugs cover
+    nothing and are always kept)."""
+    floor = site.interior.area
+    kept: list[ItemSpec] = []
+    crowded: list[tuple[str, str]] = []
+    covered = 0.0
+    for spec in specs:
+        if spec.rule.non_collision:
+            kept.append(spec)
+            continue
+        covered += spec.width * spec.depth
+        if covered > CROWDING * floor:
+            crowded.append((spec.name, f"the items before it already need {CROWDING:g} times "
+                                       f"the room's free floor ({floor:.1f} m²)"))
+        else:
+            kept.append(spec)
+    return kept, crowded
 
 
 def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
@@ -136,12 +165,17 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     Notes
     -----
     One attempt costs O(n · (w + k)) shapely queries for n items, w walls and k
-    obstacles near a candidate strip; a full room of a dozen items takes milliseconds.
+    obstacles near a candidate strip, and steering O(n²); a full room of a dozen items
+    takes milliseconds. Items whose solid footprints, with those of the items before
+    them, would cover the room's free floor :data:`CROWDING` times over cannot all
+    stand and are left out before solving (:func:`_within_floor`), so the work per room
+    is bounded by its floor area and the cost of a table grows linearly with its rows.
     The passage rule adds a shapely difference and a few predicates per pose that is
     otherwise free.
     """
     if passage_width < 0:
         raise ValueError(f"passage_width must not be negative, got {passage_width:g}")
+    specs, crowded = _within_floor(site, specs)
     passage = Passage(site.interior, site.doors, passage_width) if passage_width > 0 else None
     best: tuple[dict[str, tuple[ItemSpec, Pose]], list[tuple[str, str]]] | None = None
     stale = 0
@@ -155,6 +189,7 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
             break
     assert best is not None
     placed, left_out = best
+    left_out = [*left_out, *crowded]
     items = tuple(
         FurnitureItem(name=spec.name, model=spec.model, room=site.id,
                       position=(pose.x, pose.z), rotation=pose.rotation % 4, size=spec.size,
