@@ -22,7 +22,6 @@ grammar units; :func:`lot_from_call` scales them by ``units``.
 from __future__ import annotations
 
 import json
-import os
 import re
 from collections.abc import Sequence
 from pathlib import Path
@@ -33,9 +32,8 @@ from shapely.geometry import MultiPolygon, Polygon, shape as geojson_shape
 from shapely.geometry.polygon import orient
 from shapely.validation import explain_validity
 
-from .errors import (BudgetError, DerivationError, ResourceNotFoundError, Span, UsageError,
-                     PATH_LIMIT, excerpt, shown)
-from .resources import is_regular_file
+from .errors import BudgetError, DerivationError, Span, UsageError, excerpt
+from .textfiles import read_input_bytes
 
 if TYPE_CHECKING:  # pragma: no cover
     from .sandbox import Sandbox
@@ -154,16 +152,7 @@ def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polyg
     file = Path(path)
     if sandbox is not None:
         sandbox.check(file, "lot file")
-    if not is_regular_file(file):
-        raise ResourceNotFoundError("lot file", shown(str(path), PATH_LIMIT),
-                                    [shown(os.path.abspath(file), PATH_LIMIT)])
-    try:
-        data = file.read_bytes()
-    except OSError as error:
-        raise UsageError(f"{file}: cannot read the lot file ({error.strerror})") from None
-    if len(data) > MAX_LOT_FILE_BYTES:
-        raise BudgetError(f"{file}: the lot file has {len(data):,} bytes; at most "
-                          f"{MAX_LOT_FILE_BYTES:,} are read (docs/limits.md)")
+    data = read_input_bytes(file, "lot file", MAX_LOT_FILE_BYTES)
     try:
         document = json.loads(data.decode("utf-8-sig"))
     except UnicodeDecodeError as error:

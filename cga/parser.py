@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import bisect
 import math
-import os
 import re
 from dataclasses import dataclass
 from functools import cache
@@ -32,9 +31,9 @@ from lark.lark import PostLex
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken, VisitError
 
 from . import ast
-from .errors import (PATH_LIMIT, BudgetError, CGAError, GrammarSyntaxError,
-                     ResourceNotFoundError, Span, UsageError, shown)
-from .resources import is_folder, is_regular_file
+from .errors import CGAError, GrammarSyntaxError, ResourceNotFoundError, Span
+from .resources import is_folder
+from .textfiles import read_input_bytes
 
 __all__ = ["parse", "parse_file", "read_grammar"]
 
@@ -108,16 +107,7 @@ def read_grammar(path: str | Path) -> str:
     path = Path(path)
     if is_folder(path):
         raise ResourceNotFoundError("grammar", f"{path} (a folder, not a grammar file)")
-    if not is_regular_file(path):  # also a name too long or a symbolic-link loop
-        raise ResourceNotFoundError("grammar", shown(str(path), PATH_LIMIT),
-                                    [shown(os.path.abspath(path), PATH_LIMIT)])
-    try:
-        data = path.read_bytes()
-    except OSError as error:
-        raise UsageError(f"cannot read grammar file {path}: {error.strerror}") from None
-    if len(data) > MAX_GRAMMAR_BYTES:
-        raise BudgetError(f"{shown(str(path), PATH_LIMIT)}: the grammar has {len(data):,} "
-                          f"bytes; at most {MAX_GRAMMAR_BYTES:,} are read (docs/limits.md)")
+    data = read_input_bytes(path, "grammar", MAX_GRAMMAR_BYTES)
     try:
         # a byte-order mark is dropped and old Mac line ends (CR only) become "\n"
         text = data.decode("utf-8-sig")

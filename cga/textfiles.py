@@ -1,4 +1,4 @@
-"""Reading the text files users hand to cga: rule tables (CSV) and their cells.
+"""Reading the files users hand to cga: grammars, lots, rule tables (CSV) and their cells.
 
 Tables come from spreadsheets and other machines: a UTF-8 byte-order mark, ``\\r\\n`` or
 old Mac ``\\r`` line endings are all normal and read as plain text. What is not text —
@@ -10,11 +10,15 @@ that other programs must parse (issue 19). Sizes are bounded before parsing
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
-from .errors import BudgetError, RuleTableError
+from .errors import (PATH_LIMIT, BudgetError, ResourceNotFoundError, RuleTableError,
+                     UsageError, shown)
+from .resources import is_regular_file
 
-__all__ = ["MAX_TABLE_BYTES", "MAX_NAME_LENGTH", "read_table_text", "control_character"]
+__all__ = ["MAX_TABLE_BYTES", "MAX_NAME_LENGTH", "read_input_bytes", "read_table_text",
+           "control_character"]
 
 MAX_TABLE_BYTES = 5_000_000
 """Largest rule table read (5 MB). The shipped tables have a few kilobytes."""
@@ -23,6 +27,33 @@ MAX_TABLE_BYTES = 5_000_000
 MAX_NAME_LENGTH = 100
 """Longest room type or furniture name in a table; names become file, node and label
 text in every output."""
+
+
+def read_input_bytes(path: str | Path, what: str, limit: int) -> bytes:
+    """The bytes of an input file (``what``: "grammar", "lot file"), at most ``limit``.
+
+    Raises
+    ------
+    ResourceNotFoundError
+        Not a regular file: missing, a name the OS rejects (too long, a NUL byte) or a
+        symbolic-link loop.
+    UsageError
+        The file cannot be read (no permission, ...).
+    BudgetError
+        The file has more than ``limit`` bytes.
+    """
+    name = shown(str(path), PATH_LIMIT)
+    if not is_regular_file(path):
+        raise ResourceNotFoundError(what, name, [shown(os.path.abspath(path), PATH_LIMIT)])
+    try:
+        with open(path, "rb") as file:
+            data = file.read(limit + 1)
+    except OSError as error:
+        raise UsageError(f"{name}: cannot read the {what} ({error.strerror})") from None
+    if len(data) > limit:
+        raise BudgetError(f"{name}: the {what} has more than {limit:,} bytes; at most "
+                          f"{limit:,} are read (docs/limits.md)")
+    return data
 
 
 def read_table_text(path: str | Path, *, hint: str = "save the table as UTF-8 CSV") -> str:

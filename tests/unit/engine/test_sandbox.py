@@ -71,19 +71,12 @@ def test_absolute_path_inside_the_tree_is_read(layout):
     assert found == table
 
 
-def test_allowed_folder_is_read(layout):
+@pytest.mark.parametrize("written", ["../outside/secret.csv",   # as written
+                                     "D:\\Elsewhere\\secret"])  # by name
+def test_allowed_folder_is_read(layout, written):
     project, outside = layout
     sandbox = Sandbox.for_grammar(project, [outside])
-    found = resolve_resource("../outside/secret.csv", "rules", base_dir=project,
-                             sandbox=sandbox)
-    assert found.resolve() == (outside / "secret.csv").resolve()
-
-
-def test_allowed_folder_is_searched_by_name(layout):
-    project, outside = layout
-    sandbox = Sandbox.for_grammar(project, [outside])
-    found = resolve_resource("D:\\Elsewhere\\secret", "rules", base_dir=project,
-                             sandbox=sandbox)
+    found = resolve_resource(written, "rules", base_dir=project, sandbox=sandbox)
     assert found.resolve() == (outside / "secret.csv").resolve()
 
 
@@ -125,7 +118,7 @@ def test_names_the_os_rejects_are_not_found(layout, written):
     with pytest.raises(ResourceNotFoundError) as info:
         resolve_resource(written, "rules", base_dir=project,
                          sandbox=Sandbox.for_grammar(project))
-    assert len(str(info.value)) < 2000
+    assert len(str(info.value)) < 4000
     assert "\x00" not in str(info.value)
 
 
