@@ -23,8 +23,15 @@ from cga.shape import Mass, Shape
 from .base import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
 from .floorplan.bsp import partition
+from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,
+                                    circulation_faces)
+from .floorplan.tiling import tile_with_fixed_faces
+from .roomtyping.doors import DOOR_MARGIN
 
-__all__ = ["MakeFloor"]
+__all__ = ["MIN_CORRIDOR_WIDTH", "MakeFloor"]
+
+MIN_CORRIDOR_WIDTH = 1.2
+"""Least corridor width (m): two people pass, a wheelchair turns (DESIGN §11)."""
 
 
 class MakeFloor(Operation):
@@ -48,6 +55,20 @@ class MakeFloor(Operation):
               doc="every floor made by this rule gets the same layout"),
         Param("window_sill", "length", default=0.9, keyword_only=True,
               doc="height of the window bottoms above the floor (m)"),
+        Param("corridor", "string", default="none", keyword_only=True,
+              doc="circulation carved before the rooms: 'none', 'spine' (double-loaded "
+                  "corridor along the long axis), 'hall' (across the short axis, from the "
+                  "front wall) or 'centre_line' (through every wing of an L/U/T)"),
+        Param("corridor_width", "length", default=1.2, keyword_only=True,
+              doc="corridor width between wall centre lines (m, at least 1.2 m)"),
+        Param("corridor_position", "number", default=0.5, keyword_only=True,
+              doc="where a spine or hall runs across the building (0..1, 0.5: middle)"),
+        Param("min_room_depth", "length", default=2.5, keyword_only=True,
+              doc="least depth of the rooms between corridor and outer wall (m)"),
+        Param("n_left", "count", default=0, keyword_only=True,
+              doc="spine: rooms of equal width on the low side (0: the BSP decides)"),
+        Param("n_right", "count", default=0, keyword_only=True,
+              doc="spine: rooms of equal width on the high side (0: the BSP decides)"),
     )
     doc = ("make_floor(split, wallWidth, numWindows>windowWidth>windowHigh, doorWidth, "
            "doorHeight): partition a floor into split + 1 rooms")
@@ -88,9 +109,22 @@ class MakeFloor(Operation):
         min_width, min_area = args["min_room_width"], args["min_room_area"]
         rng = stream(ctx.seed, ("make_floor", shape.symbol)) if args["same_layout"] else ctx.rng
         index = int(shape.attrs.get("floor", 0))
+        ring = list(footprint.exterior.coords)[:-1]
+        spec = _corridor(args, ctx.units)
         try:
-            result = partition(list(footprint.exterior.coords)[:-1], split, rng,
-                               min_width=min_width, min_area=min_area, cut_range=(lo, hi))
+            fixed = circulation_faces(ring, spec)
+        except CirculationError as error:
+            raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {error}",
+                                  hint=_footprint_hint(footprint)) from None
+        # Rooms besides the circulation: split + 1; fixed rooms and free pieces count.
+        cuts = split
+        if fixed:
+            pieces = tile_with_fixed_faces(ring, [f.polygon for f in fixed])[1]
+            cuts = max(0, split + 1 - pieces - sum(not f.circulation for f in fixed))
+        door_reach = settings.door_width + 2 * (DOOR_MARGIN + settings.wall_thickness)
+        try:
+            result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
+                               cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
         except ValueError as error:
             raise DerivationError(f"make_floor cannot cut this footprint into rooms: {error}",
                                   hint=_footprint_hint(footprint)) from None
@@ -100,10 +134,30 @@ class MakeFloor(Operation):
                                   f"{result.shortfall}", floor=index))
         try:
             plan = plan_from_dcel(result.dcel, settings=settings, index=index,
-                                  elevation=mass.base, height=mass.height)
+                                  elevation=mass.base, height=mass.height,
+                                  circulation=result.circulation)
         except ValueError as error:
             raise DerivationError(f"the floor is too narrow for its walls: {error}") from None
         return [Child(successor=0, geometry=mass, scope=shape.scope, plan=plan)]
+
+
+def _corridor(args: dict[str, Any], units: float) -> CorridorSpec:
+    """The corridor options, checked (DESIGN §11)."""
+    mode = str(args["corridor"]).lower()
+    if mode not in CORRIDOR_MODES:
+        raise DerivationError(f"corridor must be one of {', '.join(map(repr, CORRIDOR_MODES))}, "
+                              f"got {args['corridor']!r}")
+    width, position, depth = args["corridor_width"], args["corridor_position"], args["min_room_depth"]
+    if not width >= MIN_CORRIDOR_WIDTH - 1e-9:
+        raise DerivationError(f"corridor_width must be at least {MIN_CORRIDOR_WIDTH / units:g} "
+                              f"({MIN_CORRIDOR_WIDTH:g} m), got {width / units:g}")
+    if not 0.0 <= position <= 1.0:
+        raise DerivationError(f"corridor_position is a fraction between 0 and 1, got {position:g}")
+    if not depth > 0:
+        raise DerivationError(f"min_room_depth must be positive, got {depth / units:g}")
+    if (args["n_left"] or args["n_right"]) and mode != "spine":
+        raise DerivationError("n_left and n_right count rooms along a corridor=\"spine\"")
+    return CorridorSpec(mode, width, position, depth, args["n_left"], args["n_right"])  # type: ignore[arg-type]
 
 
 def _settings(args: dict[str, Any], storey: float, units: float) -> FloorSettings:

@@ -7,6 +7,8 @@ wall (its id is the DCEL edge number), and outer walls get their windows.
 
 from __future__ import annotations
 
+from collections.abc import Collection
+
 import shapely
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
@@ -23,7 +25,7 @@ _GRID = 1e-6
 
 
 def plan_from_dcel(dcel: DCEL, *, settings: FloorSettings, index: int, elevation: float,
-                   height: float) -> FloorPlan:
+                   height: float, circulation: Collection[int] = ()) -> FloorPlan:
     """Build the floor plan of a partitioned DCEL.
 
     Parameters
@@ -34,6 +36,8 @@ def plan_from_dcel(dcel: DCEL, *, settings: FloorSettings, index: int, elevation
         Wall thickness and window sizes used for room interiors and windows.
     index, elevation, height
         Floor number, y of the bottom of the floor slab, storey height.
+    circulation
+        Ids of the faces that are halls or corridors (:attr:`cga.model.Room.circulation`).
 
     Returns
     -------
@@ -74,7 +78,8 @@ def plan_from_dcel(dcel: DCEL, *, settings: FloorSettings, index: int, elevation
             raise ValueError(
                 f"room {face.id} ({polygon.area:.2f} m²) has no connected free floor inside "
                 f"walls {t:.2f} m thick")
-        rooms.append(Room(face.id, polygon, orient(interior)))
+        rooms.append(Room(face.id, polygon, orient(interior),
+                          circulation=face.id in circulation))
 
     walls_with_windows, windows = place_windows(tuple(walls), settings)
     return FloorPlan(index=index, elevation=elevation, height=height, footprint=footprint,

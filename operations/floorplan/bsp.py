@@ -20,6 +20,14 @@ every floor looked the same; here (DESIGN §6):
 Concave leaves (pieces of L, U or T footprints) work the same way: a line may cross
 such a leaf several times; each crossing interval is a chord that splits it in two, and
 the longest feasible one is taken.
+
+Fixed faces (DESIGN §11): corridors, entry halls and stair cores can be given up front
+(:class:`FixedFace`). They become faces of the DCEL before the first cut, and no cut
+ever crosses them; the BSP partitions only the free pieces around them
+(:mod:`.tiling`). A leaf that shares wall with a circulation face keeps that access:
+both rooms of a cut must keep at least ``min_contact`` metres of wall on circulation
+(room for a door and its margins), so every room cut from such a leaf opens onto the
+corridor or hall, as in the corridor offices of the TFG and the Twente corridor spine.
 """
 
 from __future__ import annotations
@@ -32,9 +40,10 @@ from typing import Literal
 import numpy as np
 from shapely.geometry import Polygon
 
-from .dcel import DCEL, EPS, point_in_ring, signed_area
+from .dcel import DCEL, EPS, Face, point_in_ring, signed_area
+from .tiling import tile_with_fixed_faces
 
-__all__ = ["SQUARE_RATIO", "Cut", "Partition", "partition"]
+__all__ = ["SQUARE_RATIO", "Cut", "FixedFace", "Partition", "partition"]
 
 SQUARE_RATIO = 1.1
 """Leaves whose bounding box is closer to square than this pick the cut axis at random."""
@@ -62,16 +71,38 @@ class Cut:
 
 
 @dataclass(frozen=True)
+class FixedFace:
+    """A face placed before the BSP runs and never cut: a corridor, hall or stair core.
+
+    ``polygon`` is its outline ``(x, z)`` inside the footprint; ``circulation`` marks
+    space whose job is to connect (rooms cut next to it keep a door's length of wall on
+    it); ``kind`` names it for the plan (``"corridor"``, ``"hall"``, ``"core"``, ...).
+    """
+
+    polygon: tuple[Point, ...]
+    circulation: bool = False
+    kind: str = "fixed"
+
+
+@dataclass(frozen=True)
 class Partition:
     """The result of :func:`partition`: the DCEL (faces are the rooms) and its cuts.
 
     ``shortfall`` says why fewer than ``requested`` cuts were made (None when all were).
+    Faces ``0 .. len(fixed) - 1`` are the fixed faces, in the order given; the free
+    pieces around them and the rooms cut from those follow.
     """
 
     dcel: DCEL
     cuts: tuple[Cut, ...]
     requested: int
     shortfall: str | None = None
+    fixed: tuple[FixedFace, ...] = ()
+
+    @property
+    def circulation(self) -> frozenset[int]:
+        """Ids of the faces that are circulation (fixed faces marked so)."""
+        return frozenset(i for i, f in enumerate(self.fixed) if f.circulation)
 
 
 @dataclass(frozen=True)
@@ -81,6 +112,7 @@ class _Rules:
     cut_range: tuple[float, float]
     grid: float
     min_offset: float
+    min_contact: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -93,8 +125,12 @@ class _Crossing:
 def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator, *,
               min_width: float = 2.4, min_area: float = 6.0,
               cut_range: tuple[float, float] = (0.35, 0.65), grid: float = 0.01,
-              min_offset: float = 0.5) -> Partition:
+              min_offset: float = 0.5, fixed: Sequence[FixedFace] = (),
+              min_contact: float = 0.0) -> Partition:
     """Cut a footprint into ``splits + 1`` rooms with a randomised BSP.
+
+    With ``fixed`` faces, the free pieces around them are cut instead: ``splits`` cuts
+    make ``splits + pieces`` rooms besides the fixed faces.
 
     Parameters
     ----------
@@ -114,6 +150,11 @@ def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator,
     min_offset
         Least distance (m) between a cut and the leaf's corners and wall ends along the
         cut axis, unless the cut lines up with one exactly.
+    fixed
+        Faces placed before any cut and never cut (corridors, halls, stair cores).
+    min_contact
+        Least wall (m) a room keeps on a circulation face when the leaf it is cut from
+        has such a wall (0: no requirement).
 
     Returns
     -------
@@ -124,7 +165,8 @@ def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator,
     Raises
     ------
     ValueError
-        If an argument is out of range or the footprint is not a valid polygon.
+        If an argument is out of range, the footprint is not a valid polygon, or a fixed
+        face is not a polygon inside the footprint apart from the others.
 
     Notes
     -----
@@ -142,27 +184,38 @@ def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator,
     lo, hi = cut_range
     if not 0.0 < lo <= hi < 1.0:
         raise ValueError(f"cut_range must satisfy 0 < lo ≤ hi < 1, got {cut_range}")
-    if min_width <= 0 or min_area < 0 or grid <= 0 or min_offset < 0:
-        raise ValueError("min_width and grid must be > 0, min_area and min_offset ≥ 0")
-    rules = _Rules(min_width, min_area, (lo, hi), grid, min_offset)
-    dcel = DCEL.from_polygon(footprint)
+    if min_width <= 0 or min_area < 0 or grid <= 0 or min_offset < 0 or min_contact < 0:
+        raise ValueError("min_width and grid must be > 0, min_area, min_offset and "
+                         "min_contact ≥ 0")
+    rules = _Rules(min_width, min_area, (lo, hi), grid, min_offset, min_contact)
+    fixed = tuple(fixed)
+    if fixed:
+        rings, _ = tile_with_fixed_faces(footprint, [f.polygon for f in fixed])
+        dcel = DCEL.from_polygons(rings)
+    else:
+        dcel = DCEL.from_polygon(footprint)
+    circulation = {dcel.faces[i] for i, f in enumerate(fixed) if f.circulation}
     cuts: list[Cut] = []
     for _ in range(splits):
-        cut = _split_largest(dcel, rng, rules)
+        cut = _split_largest(dcel, rng, rules, len(fixed), circulation)
         if cut is None:
-            return Partition(dcel, tuple(cuts), splits, _shortfall(dcel, rules))
+            return Partition(dcel, tuple(cuts), splits, _shortfall(dcel, rules, len(fixed)),
+                             fixed)
         cuts.append(cut)
-    return Partition(dcel, tuple(cuts), splits)
+    return Partition(dcel, tuple(cuts), splits, None, fixed)
 
 
-def _split_largest(dcel: DCEL, rng: np.random.Generator, rules: _Rules) -> Cut | None:
-    rings = [(f, dcel.points(f)) for f in dcel.faces]
+def _split_largest(dcel: DCEL, rng: np.random.Generator, rules: _Rules, first_free: int,
+                   circulation: set[Face]) -> Cut | None:
+    leaves = dcel.faces[first_free:]
+    rings = [(f, dcel.points(f)) for f in leaves]
     areas = [signed_area(ring) for _, ring in rings]
     for k in sorted(range(len(rings)), key=lambda k: (-areas[k], k)):
         face, ring = rings[k]
         if areas[k] < 2 * rules.min_area - EPS:
             break  # sorted by area: no smaller leaf can hold two rooms either
-        chosen = _choose_cut(ring, rng, rules)
+        contact = [h.twin.face in circulation for h in dcel.boundary(face)] if circulation else None
+        chosen = _choose_cut(ring, rng, rules, contact)
         if chosen is not None:
             axis, position, p, q = chosen
             h = dcel.split_face(face, p, q)
@@ -170,8 +223,10 @@ def _split_largest(dcel: DCEL, rng: np.random.Generator, rules: _Rules) -> Cut |
     return None
 
 
-def _shortfall(dcel: DCEL, rules: _Rules) -> str:
-    largest = max(dcel.faces, key=lambda f: (dcel.area(f), -f.id))
+def _shortfall(dcel: DCEL, rules: _Rules, first_free: int) -> str:
+    if first_free == len(dcel.faces):
+        return "the fixed faces leave no free floor to cut"
+    largest = max(dcel.faces[first_free:], key=lambda f: (dcel.area(f), -f.id))
     xs, zs = zip(*dcel.points(largest))
     return (f"no room can be cut again without making a room narrower than "
             f"{rules.min_width:.2f} m or smaller than {rules.min_area:.2f} m² (the largest, "
@@ -179,9 +234,17 @@ def _shortfall(dcel: DCEL, rules: _Rules) -> str:
             f"{dcel.area(largest):.2f} m²)")
 
 
-def _choose_cut(ring: list[Point], rng: np.random.Generator,
-                rules: _Rules) -> tuple[Literal["x", "z"], float, Point, Point] | None:
-    """Pick axis, position and chord for one leaf, or None when no cut is allowed."""
+def _choose_cut(ring: list[Point], rng: np.random.Generator, rules: _Rules,
+                contact: list[bool] | None = None,
+                ) -> tuple[Literal["x", "z"], float, Point, Point] | None:
+    """Pick axis, position and chord for one leaf, or None when no cut is allowed.
+
+    ``contact[i]`` says whether the edge from ``ring[i]`` to ``ring[i + 1]`` lies on a
+    circulation face; if the leaf has such wall, both pieces must keep
+    ``rules.min_contact`` of it.
+    """
+    if contact is not None and not (any(contact) and rules.min_contact > 0):
+        contact = None
     xs, zs = zip(*ring)
     dx, dz = max(xs) - min(xs), max(zs) - min(zs)
     if max(dx, dz) < SQUARE_RATIO * min(dx, dz):
@@ -193,7 +256,7 @@ def _choose_cut(ring: list[Point], rng: np.random.Generator,
         marks = sorted({p[k] for p in ring})
         drawn = marks[0] + rng.uniform(*rules.cut_range) * (marks[-1] - marks[0])
         for position in _candidates(drawn, marks, rules):
-            chord = _best_chord(ring, k, position, rules)
+            chord = _best_chord(ring, k, position, rules, contact)
             if chord is not None:
                 return axis, position, chord[0], chord[1]
     return None
@@ -267,16 +330,34 @@ def _chords(ring: list[Point], k: int, c: float) -> list[tuple[_Crossing, _Cross
     return chords
 
 
-def _best_chord(ring: list[Point], k: int, c: float, rules: _Rules) -> tuple[Point, Point] | None:
-    """The longest chord on the line ``coord[k] = c`` whose two pieces are valid rooms."""
+def _best_chord(ring: list[Point], k: int, c: float, rules: _Rules,
+                contact: list[bool] | None = None) -> tuple[Point, Point] | None:
+    """The longest chord on the line ``coord[k] = c`` whose two pieces are valid rooms
+    (keeping their access to circulation, see :func:`_choose_cut`)."""
     best = None
     for p, q in _chords(ring, k, c):
         length = q.point[1 - k] - p.point[1 - k]
         if best is not None and length <= best[0] + EPS:
             continue
-        if _valid_room(_arc(ring, p, q), rules) and _valid_room(_arc(ring, q, p), rules):
+        one, other = _arc(ring, p, q), _arc(ring, q, p)
+        if contact is not None and min(_contact_length(one, p.index, contact),
+                                       _contact_length(other, q.index, contact)) \
+                < rules.min_contact - 1e-9:
+            continue
+        if _valid_room(one, rules) and _valid_room(other, rules):
             best = (length, p.point, q.point)
     return None if best is None else (best[1], best[2])
+
+
+def _contact_length(arc: list[Point], start: int, contact: list[bool]) -> float:
+    """Length of the arc's boundary lying on circulation.
+
+    The arc from :func:`_arc` runs along ring edges ``start, start + 1, ...``: its
+    segment ``j`` lies on edge ``start + j`` (the closing chord is not counted).
+    """
+    n = len(contact)
+    return sum(math.dist(arc[j], arc[j + 1]) for j in range(len(arc) - 1)
+               if contact[(start + j) % n])
 
 
 def _arc(ring: list[Point], p: _Crossing, q: _Crossing) -> list[Point]:

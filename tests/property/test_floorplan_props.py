@@ -18,9 +18,6 @@ import numpy as np
 import pytest
 import shapely
 from hypothesis import HealthCheck, given, settings, strategies as st
-from shapely import affinity
-from shapely.geometry import Polygon, box
-from shapely.geometry.polygon import orient
 
 from cga.operations.base import OperationContext
 from cga.meshing.solids import floor_nodes
@@ -28,43 +25,11 @@ from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape
 
 from dcel_checks import narrowest_room_violation, validate_plan
+from footprint_strategies import footprints
 
 MIN_WIDTH, MIN_AREA = 2.4, 6.0
 EXAMPLES_PER_KIND = 130  # 4 kinds: 520 storeys
 _EXAMPLES = itertools.count()  # solids on every tenth storey
-
-
-def grid(draw, lo, hi):
-    """A length in [lo, hi] on the 1 cm grid."""
-    return draw(st.integers(round(lo * 100), round(hi * 100))) / 100
-
-
-@st.composite
-def footprints(draw, kind):
-    w, d = grid(draw, 8, 24), grid(draw, 6, 18)
-    if kind == "rectangle":
-        shape = box(0, 0, w, d)
-    elif kind == "L":
-        nx, nz = grid(draw, 0.3 * w, 0.7 * w), grid(draw, 0.3 * d, 0.7 * d)
-        shape = Polygon([(0, 0), (w, 0), (w, nz), (nx, nz), (nx, d), (0, d)])
-    elif kind == "U":
-        left, right = grid(draw, 0.2 * w, 0.4 * w), grid(draw, 0.2 * w, 0.4 * w)
-        depth = grid(draw, 0.3 * d, 0.7 * d)
-        shape = Polygon([(0, 0), (w, 0), (w, d), (w - right, d), (w - right, d - depth),
-                         (left, d - depth), (left, d), (0, d)])
-    else:  # T: a bar along the bottom, a stem up from it
-        bar = grid(draw, 0.3 * d, 0.6 * d)
-        stem_w = grid(draw, 0.3 * w, 0.6 * w)
-        x0 = grid(draw, 0.05 * w, w - stem_w - 0.05 * w)
-        shape = Polygon([(0, 0), (w, 0), (w, bar), (x0 + stem_w, bar), (x0 + stem_w, d),
-                         (x0, d), (x0, bar), (0, bar)])
-    shape = affinity.rotate(shape, 90 * draw(st.integers(0, 3)), origin=(0, 0))
-    if draw(st.booleans()):
-        shape = affinity.scale(shape, -1, 1, origin=(0, 0))
-    dx, dz = grid(draw, -20, 20), grid(draw, -20, 20)
-    shape = affinity.translate(shape, dx, dz)
-    coords = [(round(x, 2), round(z, 2)) for x, z in shape.exterior.coords]
-    return orient(Polygon(coords), 1.0)
 
 
 @pytest.mark.slow

@@ -172,3 +172,43 @@ def test_convex_footprints_with_slanted_walls(footprint):
         region = footprint.difference(shapely.union_all([r.interior for r in plan.rooms]))
         openings = sum(o.width * o.height * 0.2 for w in plan.walls for o in w.openings)
         assert sum(n.mesh.volume for n in walls) == pytest.approx(region.area * 2.8 - openings, rel=1e-6)
+
+
+@pytest.mark.parametrize("mode, footprint", [
+    ("spine", box(0, 0, 20, 12)),
+    ("hall", box(0, 0, 14, 10)),
+    ("centre_line", Polygon([(0, 0), (20, 0), (20, 7), (9, 7), (9, 16), (0, 16)])),
+])
+def test_corridor_modes_carve_one_circulation_room_and_split_plus_one_rooms(mode, footprint):
+    for seed in range(5):
+        ctx, reports = context(rng_seed=seed)
+        [child] = MakeFloor().apply(storey(footprint), args(split=5, corridor=mode), ctx)
+        plan = child.plan
+        validate_plan(plan)
+        circulation = [r for r in plan.rooms if r.circulation]
+        assert len(circulation) == 1 and circulation[0].id == 0
+        assert len(plan.rooms) - 1 == 6 and reports == []
+        hall = circulation[0].polygon
+        for room in plan.rooms[1:]:  # every room keeps a door's length of wall on it
+            assert room.polygon.boundary.intersection(hall.boundary).length >= 0.9 + 2 * 0.3 - 1e-9
+
+
+def test_rooms_per_side_make_equal_offices():
+    ctx, _ = context()
+    [child] = MakeFloor().apply(storey(box(0, 0, 20, 12)),
+                                args(split=7, corridor="spine", n_left=4, n_right=4), ctx)
+    areas = sorted(round(r.area, 6) for r in child.plan.rooms if not r.circulation)
+    assert areas == [27.0] * 8
+
+
+@pytest.mark.parametrize("kw, message", [
+    ({"corridor": "ring"}, "corridor must be one of"),
+    ({"corridor": "spine", "corridor_width": 1.0}, "at least 1.2"),
+    ({"corridor": "spine", "corridor_position": 1.5}, "between 0 and 1"),
+    ({"corridor": "hall", "n_left": 2}, "n_left and n_right"),
+    ({"corridor": "spine", "min_room_depth": 6}, "cannot carve a spine corridor"),
+])
+def test_bad_corridor_options_are_derivation_errors(kw, message):
+    ctx, _ = context()
+    with pytest.raises(DerivationError, match=message):
+        MakeFloor().apply(storey(box(0, 0, 20, 12)), args(**kw), ctx)

@@ -1,0 +1,72 @@
+"""Properties of make_floor's corridors over many seeds and footprints (DESIGN §11).
+
+For rectangle, L, U and T storeys with a spine, hall or centre-line corridor: either the
+footprint is refused with a message saying why (too shallow for corridor and rooms), or
+the half-edge invariants hold and the faces tile the footprint (independent validator),
+there is exactly one circulation room, the corridor is at least its width wide
+everywhere (raster opening), every other room keeps enough wall on the corridor for a
+door with its margins, and rooms between corridor and shell are at least
+``min_room_depth`` deep where they meet the corridor.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+from cga.errors import DerivationError
+from cga.operations.base import OperationContext
+from cga.operations.make_floor import MakeFloor
+from cga.shape import Mass, Shape
+
+from dcel_checks import narrowest_room_violation, validate_plan
+from footprint_strategies import winged_footprints
+
+EXAMPLES_PER_KIND = 130  # 4 kinds: 520 storeys
+DOOR, WALL, MARGIN = 0.9, 0.2, 0.1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", ["rectangle", "L", "U", "T"])
+@settings(max_examples=EXAMPLES_PER_KIND, deadline=None,
+          suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_corridor_properties(kind, data):
+    footprint = data.draw(winged_footprints(kind), label="footprint")
+    mode = data.draw(st.sampled_from(["spine", "hall", "centre_line"] if kind != "rectangle"
+                                     else ["spine", "hall"]), label="mode")
+    width = data.draw(st.sampled_from([1.2, 1.5, 2.0]), label="corridor_width")
+    split = data.draw(st.integers(0, 10), label="split")
+    seed = data.draw(st.integers(0, 2**32 - 1), label="seed")
+
+    mass = Mass(footprint, 0.0, 3.0)
+    shape = Shape("Floor", ("Lot", "Floor"), mass.scope(), mass, {"floor": 0})
+    reports = []
+    ctx = OperationContext(rng=np.random.default_rng(seed), units=1.0, resolve=lambda p, k="rules": p,
+                           report=reports.append, span=None, successor_count=1, seed=seed)
+    args = {p.name: p.default for p in MakeFloor.params if not p.required}
+    args |= {"split": split, "wallWidth": WALL, "windows": (2, 1.2, 1.2), "doorWidth": DOOR,
+             "doorHeight": 2.1, "corridor": mode, "corridor_width": width}
+    try:
+        [child] = MakeFloor().apply(shape, args, ctx)
+    except DerivationError as error:
+        assert "cannot carve" in str(error)
+        return
+    plan = child.plan
+    validate_plan(plan)
+    corridors = [r for r in plan.rooms if r.circulation]
+    assert len(corridors) == 1
+    corridor = corridors[0].polygon
+    assert narrowest_room_violation(corridor, width) == 0.0
+    assert corridor.boundary.intersection(plan.footprint.boundary).length > 0  # reaches a wall
+    if not reports:
+        assert len(plan.rooms) - 1 >= split + 1 or mode == "centre_line"
+    free = plan.footprint.difference(corridor)
+    for part in getattr(free, "geoms", [free]):
+        assert narrowest_room_violation(part, 2.5) == 0.0, "a room is shallower than min_room_depth"
+    for room in plan.rooms:
+        if room.circulation:
+            continue
+        shared = room.polygon.boundary.intersection(corridor.boundary).length
+        assert shared >= DOOR + 2 * (MARGIN + WALL) - 1e-9, f"room {room.id} has no door to the corridor"

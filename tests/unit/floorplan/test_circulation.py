@@ -1,0 +1,72 @@
+"""Corridor geometry: spine, hall, centre line through L/U/T wings, rooms per side."""
+
+from __future__ import annotations
+
+import pytest
+from shapely.geometry import Polygon, box
+
+from cga.operations.floorplan.circulation import (CirculationError, CorridorSpec,
+                                                  circulation_faces)
+
+
+
+def rect(w, d):
+    return [(0, 0), (w, 0), (w, d), (0, d)]
+
+
+def corridor(footprint, **spec):
+    faces = circulation_faces(footprint, CorridorSpec(**spec))
+    assert faces[0].circulation
+    return Polygon(faces[0].polygon), faces
+
+
+def test_spine_runs_along_the_long_axis_wall_to_wall():
+    poly, faces = corridor(rect(20, 12), mode="spine")
+    assert poly.equals(box(0, 5.4, 20, 6.6)) and len(faces) == 1
+
+
+def test_hall_runs_across_the_short_axis_and_position_moves_it():
+    poly, _ = corridor(rect(14, 10), mode="hall", width=1.5, position=0.3)
+    assert poly.equals(box(14 * 0.3 - 0.75, 0, 14 * 0.3 + 0.75, 10))
+
+
+def test_position_keeps_min_depth_on_both_sides():
+    poly, _ = corridor(rect(20, 12), mode="spine", position=0.0, min_depth=3)
+    assert poly.equals(box(0, 3, 20, 4.2))
+
+
+def test_too_shallow_for_corridor_and_rooms():
+    with pytest.raises(CirculationError, match="6.20 m"):
+        circulation_faces(rect(20, 6), CorridorSpec("spine"))
+
+
+def test_rooms_per_side_divide_each_side_evenly():
+    _, faces = corridor(rect(20, 12), mode="spine", n_left=4, n_right=2)
+    rooms = [Polygon(f.polygon) for f in faces[1:]]
+    assert [r.bounds for r in rooms[:4]] == [(5 * k, 0, 5 * k + 5, 5.4) for k in range(4)]
+    assert [r.bounds for r in rooms[4:]] == [(0, 6.6, 10, 12), (10, 6.6, 20, 12)]
+    assert not any(f.circulation for f in faces[1:])
+
+
+@pytest.mark.parametrize("footprint, pieces", [
+    ([(0, 0), (20, 0), (20, 7), (9, 7), (9, 16), (0, 16)], 2),  # L
+    ([(0, 0), (24, 0), (24, 16), (17, 16), (17, 7), (7, 7), (7, 16), (0, 16)], 3),  # U
+    ([(0, 0), (24, 0), (24, 7), (15.5, 7), (15.5, 16), (8.5, 16), (8.5, 7), (0, 7)], 2),  # T
+])
+def test_centre_line_reaches_every_wing_and_leaves_min_depth(footprint, pieces):
+    poly, _ = corridor(footprint, mode="centre_line")
+    outline = Polygon(footprint)
+    assert poly.is_valid and not poly.interiors and outline.covers(poly)
+    # one corridor, every wing's far wall reached: it touches the shell in >= pieces places
+    touches = poly.boundary.intersection(outline.boundary)
+    assert len(getattr(touches, "geoms", [touches])) >= pieces
+    # width: eroding by just under half the width leaves a connected spine
+    assert poly.buffer(-0.6 + 1e-6, join_style="mitre").geom_type == "Polygon"
+    free = outline.difference(poly)
+    assert free.buffer(-2.5 / 2 + 1e-6, join_style="mitre").buffer(
+        2.5 / 2 - 1e-6, join_style="mitre").area == pytest.approx(free.area, rel=1e-6)
+
+
+def test_centre_line_refuses_slanted_walls():
+    with pytest.raises(CirculationError, match="rectilinear"):
+        circulation_faces([(0, 0), (20, 0), (20, 12), (2, 14)], CorridorSpec("centre_line"))
