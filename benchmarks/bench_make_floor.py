@@ -23,7 +23,7 @@ from cga.meshing.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape
 
-ARGS = {"split": 9, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
+ARGS = {p.name: p.default for p in MakeFloor.params if not p.required} | {"split": 9, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
         "doorHeight": 2.1, "min_room_width": 2.4, "min_room_area": 6.0,
         "cut_range": (0.35, 0.65), "same_layout": False, "window_sill": 0.9}
 

@@ -64,7 +64,7 @@ OPERATIONS = {"make_floor", "type_rooms", "add_furniture"}
 LAYOUT_TARGET_MS = 10.0
 HOUSE_TARGET_S = 0.5
 
-FLOOR_ARGS = {"split": 9, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
+FLOOR_ARGS = {p.name: p.default for p in MakeFloor.params if not p.required} | {"split": 9, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
               "doorHeight": 2.1, "min_room_width": 2.4, "min_room_area": 6.0,
               "cut_range": (0.35, 0.65), "same_layout": False, "window_sill": 0.9}
 """make_floor arguments of the layout benchmark (the house demo's sizes, 10 rooms)."""

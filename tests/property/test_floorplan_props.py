@@ -48,9 +48,10 @@ def test_make_floor_properties(kind, data):
     reports = []
     ctx = OperationContext(rng=np.random.default_rng(seed), units=1.0, resolve=lambda p, k="rules": p,
                            report=reports.append, span=None, successor_count=1, seed=seed)
-    args = {"split": split, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
-            "doorHeight": 2.1, "min_room_width": MIN_WIDTH, "min_room_area": MIN_AREA,
-            "cut_range": (0.35, 0.65), "same_layout": False, "window_sill": 0.9}
+    args = {p.name: p.default for p in MakeFloor.params if not p.required}
+    args |= {"split": split, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
+             "doorHeight": 2.1, "min_room_width": MIN_WIDTH, "min_room_area": MIN_AREA,
+             "cut_range": (0.35, 0.65), "same_layout": False, "window_sill": 0.9}
     [child] = MakeFloor().apply(shape, args, ctx)
     plan = child.plan
 
