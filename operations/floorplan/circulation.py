@@ -27,6 +27,7 @@ squarified treemaps", corridors inserted between rooms.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -83,17 +84,24 @@ def circulation_faces(footprint: Sequence[Point], spec: CorridorSpec) -> list[Fi
     """
     if spec.mode == "none":
         return []
+    return list(_faces(tuple(map(tuple, footprint)), spec))
+
+
+@functools.lru_cache(maxsize=64)
+def _faces(footprint: tuple[Point, ...], spec: CorridorSpec) -> tuple[FixedFace, ...]:
+    """:func:`circulation_faces` on hashable arguments, cached (every floor of a
+    building asks for the same corridor)."""
     outline = Polygon(footprint)
     if spec.mode == "centre_line":
         corridor = _centre_line(outline, spec)
-        return [FixedFace(_ring(corridor), circulation=True, kind="corridor")]
+        return (FixedFace(_ring(corridor), circulation=True, kind="corridor"),)
     along_long = spec.mode == "spine"
     corridor, sides = _straight(outline, spec, along_long)
     faces = [FixedFace(_ring(corridor), circulation=True,
                        kind="corridor" if along_long else "hall")]
     for side, count in zip(sides, (spec.n_left, spec.n_right)):
         faces += [FixedFace(_ring(room), kind="room") for room in _divide(side, count, along_long)]
-    return faces
+    return tuple(faces)
 
 
 def _straight(outline: Polygon, spec: CorridorSpec,

@@ -15,6 +15,7 @@ shared walls have the same vertices on both sides: T-junctions are vertices).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 
@@ -57,7 +58,16 @@ def tile_with_fixed_faces(footprint: Sequence[Point],
     Notes
     -----
     O(V²) in the total number of vertices (T-junction insertion); plans have dozens.
+    Cached: every floor of a building, and every re-draw, asks for the same tiling.
     """
+    rings, free = _tile(tuple(map(tuple, footprint)), tuple(tuple(map(tuple, f)) for f in fixed))
+    return [list(r) for r in rings], free
+
+
+@functools.lru_cache(maxsize=64)
+def _tile(footprint: tuple[Point, ...],
+          fixed: tuple[tuple[Point, ...], ...]) -> tuple[tuple[tuple[Point, ...], ...], int]:
+    """:func:`tile_with_fixed_faces` on hashable arguments, cached."""
     outline = Polygon(footprint)
     shapes = []
     for i, ring in enumerate(fixed):
@@ -74,7 +84,7 @@ def tile_with_fixed_faces(footprint: Sequence[Point],
     pieces = _simple_pieces(free, outline)
     rings = [_ring(p) for p in shapes] + [_ring(p) for p in pieces]
     corners = sorted({p for ring in rings for p in ring})
-    return [_with_junctions(ring, corners) for ring in rings], len(pieces)
+    return tuple(tuple(_with_junctions(ring, corners)) for ring in rings), len(pieces)
 
 
 def _simple_pieces(region: Polygon | MultiPolygon | shapely.Geometry,

@@ -33,6 +33,8 @@ __all__ = ["partition_to_areas", "thesis_partition"]
 
 Point = tuple[float, float]
 _AXES: dict[str, int] = {"x": 0, "z": 1}
+_MAX_CANDIDATES = 24
+"""Cut positions tried per grouping and axis, nearest to the aimed one first."""
 
 
 def partition_to_areas(footprint: Sequence[Point], areas: Sequence[float],
@@ -172,8 +174,14 @@ def _cut_for(dcel: DCEL, face: Face, wanted: list[float], rng: np.random.Generat
         for axis in axes:
             k = _AXES[axis]
             marks = sorted({p[k] for p in ring})
+            if marks[-1] - marks[0] < 2 * rules.min_width:
+                continue  # too narrow for two rooms across this axis
             aim = _position_for_share(polygon, k, marks[0], marks[-1], share)
-            for position in _candidates(aim, marks, rules):  # nearest to the aim first
+            # keep the aim where both pieces can be min_width wide (exact for rectangles)
+            aim = min(max(aim, marks[0] + rules.min_width), marks[-1] - rules.min_width)
+            for tried, position in enumerate(_candidates(aim, marks, rules)):  # nearest first
+                if tried == _MAX_CANDIDATES:
+                    break
                 chord = _best_chord(ring, k, position, rules, contact)
                 if chord is None:
                     continue
@@ -187,11 +195,14 @@ def _cut_for(dcel: DCEL, face: Face, wanted: list[float], rng: np.random.Generat
 
 
 def _position_for_share(polygon: Polygon, k: int, lo: float, hi: float, share: float) -> float:
-    """The line ``coord[k] = c`` leaving ``share`` of the polygon's area below it."""
+    """The line ``coord[k] = c`` leaving ``share`` of the polygon's area below it
+    (exact for rectangles; bisection to 1 cm otherwise)."""
     minx, minz, maxx, maxz = polygon.bounds
     total = polygon.area
+    if abs(total - (maxx - minx) * (maxz - minz)) <= 1e-9 * max(total, 1.0):
+        return lo + share * (hi - lo)
     a, b = lo, hi
-    for _ in range(30):
+    while b - a > 0.01:
         c = (a + b) / 2
         below = polygon.intersection(box(minx - 1, minz - 1, c, maxz + 1) if k == 0
                                      else box(minx - 1, minz - 1, maxx + 1, c)).area
@@ -199,8 +210,6 @@ def _position_for_share(polygon: Polygon, k: int, lo: float, hi: float, share: f
             a = c
         else:
             b = c
-        if b - a < 1e-4:
-            break
     return (a + b) / 2
 
 
