@@ -35,6 +35,8 @@ __all__ = [
     "Wall",
     "Room",
     "Door",
+    "DOOR_STATES",
+    "DOOR_OPEN_ANGLE",
     "Window",
     "FurnitureItem",
     "FloorSettings",
@@ -191,13 +193,23 @@ class Room:
         return f"room{self.id}_{self.type}" if self.type else f"room{self.id}"
 
 
+DOOR_STATES = ("closed", "open", "ajar")
+"""States a door leaf can be built in (DESIGN §16)."""
+
+DOOR_OPEN_ANGLE = math.pi / 2
+"""rad: how far a leaf opens (its joint's upper limit): the quarter circle the plan draws
+and the furniture clearance keeps free, so an open leaf never touches an item."""
+
+
 @dataclass(frozen=True)
 class Door:
     """A door in wall ``wall`` joining ``rooms`` (the second may be :data:`OUTSIDE`).
 
     ``position`` is the door's centre on the wall centre line. The leaf is hinged at the
     ``hinge`` end (``"start"`` or ``"end"`` of the wall direction) and swings into
-    ``swing_room`` through a quarter circle of radius ``width``.
+    ``swing_room`` through a quarter circle of radius ``width``. ``state`` is how the
+    build leaves it and ``angle`` (rad, 0 = closed, :data:`DOOR_OPEN_ANGLE` = open) how
+    far the leaf is turned into ``swing_room``.
     """
 
     id: int
@@ -210,6 +222,13 @@ class Door:
     hinge: Literal["start", "end"] = "start"
     is_front: bool = False
     reason: Literal["rule", "reachability", "front"] = "rule"
+    state: Literal["closed", "open", "ajar"] = "closed"
+    angle: float = 0.0
+
+    @property
+    def passable(self) -> bool:
+        """Whether a robot can drive through without opening the leaf first."""
+        return self.state == "open"
 
 
 @dataclass(frozen=True)
@@ -253,6 +272,9 @@ class FurnitureItem:
     is_detail: bool = False
     non_collision: bool = False
     elevation: float = 0.0
+    door: int | None = None
+    """The id of the door this item is the leaf of (``detail_items``); its pose then
+    comes from the door's hinge and angle (:mod:`cga.doors`), not from ``rotation``."""
 
     @property
     def front(self) -> tuple[float, float]:

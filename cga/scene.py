@@ -20,6 +20,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from cga.operations.furniture.library import ModelLibrary
 
+    from .doors import DoorLeaf
+
 __all__ = ["ItemInfo", "NodeKind", "Scene", "SceneNode"]
 
 NodeKind = Literal["wall", "slab", "ceiling", "furniture", "mass", "face"]
@@ -65,7 +67,8 @@ class SceneNode:
     furniture item (physics uses them as a compound body); ``static`` bodies do not move.
     ``item`` describes a furniture node (None for every other kind); ``extras`` are the
     labels of the other kinds (wall id, floor, shape path, ...), written to the glTF as
-    they are.
+    they are. ``door`` is set on a door leaf: its hinge, angle and collision box
+    (:mod:`cga.doors`).
     """
 
     path: str
@@ -75,6 +78,7 @@ class SceneNode:
     static: bool = True
     parts: tuple["trimesh.Trimesh", ...] = ()
     item: ItemInfo | None = None
+    door: "DoorLeaf | None" = None
 
     @property
     def labels(self) -> dict[str, Any]:

@@ -34,6 +34,7 @@ from cga.shape import Shape
 from .base import CheckContext, Child, Operation, OperationContext, Param
 from .roomtyping.assign import Typing, assign_types
 from .roomtyping.backtrack import RoomSet
+from .roomtyping.door_states import DOOR_STATE_CHOICES, with_door_states
 from .roomtyping.doors import (Interval, clear_windows, door_centre, door_opening,
                                door_spans, front_door_site, make_door)
 from .roomtyping.room_graph import (DoorSites, door_sites, reachability_pairs, room_graph,
@@ -51,7 +52,8 @@ _STAGE = "type_rooms"
 
 def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
               units: float = 1.0, strict: bool = False,
-              door_position: Literal["center", "random"] = "random") -> FloorPlan:
+              door_position: Literal["center", "random"] = "random",
+              door_state: str = "closed") -> FloorPlan:
     """Type the rooms of ``plan`` and give it a room graph and doors.
 
     Parameters
@@ -69,6 +71,10 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         Fail instead of adding doors the rules do not ask for.
     door_position:
         ``"center"`` or ``"random"`` (see :data:`DOOR_POSITIONS`).
+    door_state:
+        How the doors are left: ``"closed"``, ``"open"``, ``"ajar"`` or ``"random"``
+        (one state per door from ``rng``, drawn after every other choice of the floor;
+        :mod:`~.roomtyping.door_states`).
 
     Returns
     -------
@@ -121,6 +127,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, reason))
             if reason == "reachability":
                 notes.append(_reachability_note(typed, pair, table))
+    doors = with_door_states(doors, door_state, rng)
     result = typed.with_changes(walls=tuple(walls[w.id] for w in typed.walls),
                                 windows=windows, doors=tuple(doors),
                                 diagnostics=plan.diagnostics + tuple(notes))
@@ -233,9 +240,12 @@ class TypeRooms(Operation):
               doc="fail instead of adding doors the rules do not ask for"),
         Param("door_position", "string", default="random", keyword_only=True,
               doc="'center' or 'random': where a door sits in its free stretch of wall"),
+        Param("door_state", "string", default="closed", keyword_only=True,
+              doc="'closed', 'open', 'ajar' or 'random' (one per door, from the seed): "
+                  "how the door leaves are left"),
     )
-    doc = ('type_rooms("rules.csv", strict=false, door_position="random"): type the rooms, '
-           "build the room graph, cut the doors")
+    doc = ('type_rooms("rules.csv", strict=false, door_position="random", '
+           'door_state="closed"): type the rooms, build the room graph, cut the doors')
 
     def check_values(self, args: dict[str, Any], units: float) -> None:
         position = args["door_position"]
@@ -243,6 +253,11 @@ class TypeRooms(Operation):
             raise DerivationError(f"door_position must be one of "
                                   f"{', '.join(repr(p) for p in DOOR_POSITIONS)}, got "
                                   f"{excerpt(position)}")
+        state = args["door_state"]
+        if isinstance(state, str) and state.lower() not in DOOR_STATE_CHOICES:
+            raise DerivationError(f"door_state must be one of "
+                                  f"{', '.join(repr(s) for s in DOOR_STATE_CHOICES)}, got "
+                                  f"{excerpt(state)}")
 
     def check_files(self, args: dict[str, Any], ctx: CheckContext) -> None:
         if isinstance(args["rules"], str):
@@ -254,9 +269,11 @@ class TypeRooms(Operation):
                                   hint="apply make_floor(...) to this shape first")
         self.check_values(args, ctx.units)
         position = str(args["door_position"]).lower()
+        state = str(args["door_state"]).lower()
         table = _cached_table(ctx.resolve(args["rules"], "rules"), ctx.cache)
         plan = type_plan(shape.plan, table, ctx.rng, units=ctx.units,
-                         strict=bool(args["strict"]) or ctx.strict, door_position=position)
+                         strict=bool(args["strict"]) or ctx.strict, door_position=position,
+                         door_state=state)
         return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=plan)]
 
 

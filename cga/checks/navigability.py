@@ -11,6 +11,11 @@ in their entry room, where ``type_rooms`` says the stair arrives
 (``room_graph.graph["entry"]``), or, on an untyped floor, in the largest room: the model
 has no stair geometry yet, and the report says so.
 
+Doors: a robot (or its planner) can open a door, so a room counts as reachable through
+any door whatever its state; the report also says which rooms the robot reaches with the
+doors as the build leaves them (``reachable_as_built``) and which doors are not open
+(``closed_doors``, DESIGN §16), so a planner knows which doors it must open.
+
 For each room the report gives whether the robot reaches it, what share of the room's
 drivable floor it reaches, and the narrowest passage on the way there: the bottleneck of
 the widest path, read off a maximum spanning tree of the grid weighted by clearance
@@ -83,7 +88,8 @@ class RoomReach:
     """One room's result. ``reachable_fraction`` is the share of the room's drivable
     cells the robot reaches (below 1 when furniture cuts off a corner); ``narrowest``
     is None for the room a robot starts in and for unreachable rooms. ``reasons`` explain an
-    unreachable room; ``blocked_doors`` and ``blocking_items`` name the culprits."""
+    unreachable room; ``blocked_doors`` and ``blocking_items`` name the culprits.
+    ``reachable_as_built`` is False for a room the robot reaches only by opening doors."""
 
     room: int
     type: str | None
@@ -93,6 +99,7 @@ class RoomReach:
     reasons: tuple[str, ...] = ()
     blocked_doors: tuple[int, ...] = ()
     blocking_items: tuple[str, ...] = ()
+    reachable_as_built: bool = True
 
     @property
     def label(self) -> str:
@@ -108,6 +115,7 @@ class RoomReach:
             "reasons": list(self.reasons),
             "blocked_doors": list(self.blocked_doors),
             "blocking_items": list(self.blocking_items),
+            "reachable_as_built": self.reachable_as_built,
         }
 
 
@@ -116,6 +124,7 @@ class FloorReach:
     """One floor's result. ``start`` is ``"front_door"`` (the robot starts outside door
     ``start_door``), ``"entry_room"`` (inside ``start_room``, the room typing made the
     floor's entry) or ``"largest_room"`` (untyped floors); ``note`` says why.
+    ``closed_doors`` are the doors the build leaves closed or ajar.
     ``elapsed_seconds`` (wall-clock) is left out of :meth:`to_dict`, which is deterministic."""
 
     floor: int
@@ -126,6 +135,7 @@ class FloorReach:
     note: str
     rooms: tuple[RoomReach, ...]
     elapsed_seconds: float
+    closed_doors: tuple[int, ...] = ()
 
     @property
     def passed(self) -> bool:
@@ -146,6 +156,9 @@ class FloorReach:
             "note": self.note,
             "reachable_rooms": [r.room for r in self.rooms if r.reachable],
             "unreachable_rooms": [r.room for r in self.unreachable],
+            "closed_doors": list(self.closed_doors),
+            "rooms_behind_closed_doors": [r.room for r in self.rooms
+                                          if r.reachable and not r.reachable_as_built],
             "rooms": [r.to_dict() for r in self.rooms],
         }
 
@@ -275,9 +288,12 @@ class _FloorCheck:
         self.res = grid.resolution
         self.front = plan.front_door()
         outside_blocked = np.zeros(grid.shape, dtype=bool) if self.front else ~grid.free_mask
-        self.furniture = [o for o in grid.obstacles if o.kind == "furniture"]
+        self.furniture = [o for o in grid.obstacles if o.kind == "furniture" and o.door is None]
         structure = grid.occupied_by(o.path for o in grid.obstacles if o.kind != "furniture")
-        self.clear = self._clearance(grid.occupied | outside_blocked)
+        # every door open: what the robot can reach; as built: what it reaches unaided
+        opened = grid.occupied_by(o.path for o in grid.obstacles if o.door is None)
+        self.clear = self._clearance(opened | outside_blocked)
+        self.drivable_as_built = self._clearance(grid.occupied | outside_blocked) >= radius
         self.clear_bare = self._clearance(structure | outside_blocked)
         self.drivable = self.clear >= radius
         self.drivable_bare = self.clear_bare >= radius
@@ -300,8 +316,12 @@ class _FloorCheck:
     def run(self, started: float) -> FloorReach:
         start_kind, start_point, start_room, note = self._start()
         cell = self._start_cell(start_point)
+        as_built = np.zeros(self.grid.shape, dtype=bool)
         if cell is not None:
             self.reached = self.labels == self.labels[cell]
+            if self.drivable_as_built[cell]:
+                labels = ndimage.label(self.drivable_as_built)[0]
+                as_built = labels == labels[cell]
         reached = self.reached
         reachable = {rid: bool((m & reached).any()) for rid, m in self.masks.items()}
         inside_start = start_room if start_kind != "front_door" else None
@@ -313,15 +333,17 @@ class _FloorCheck:
             fraction = float((mask & reached).sum() / drivable.sum()) if drivable.any() else 0.0
             if reachable[room.id]:
                 rooms.append(RoomReach(room.id, room.type, True, fraction,
-                                       narrowest.get(room.id)))
+                                       narrowest.get(room.id),
+                                       reachable_as_built=bool((mask & as_built).any())))
                 continue
             reasons, doors, items = self._why(room, cell, reachable, start_kind)
             rooms.append(RoomReach(room.id, room.type, False, fraction, None, tuple(reasons),
-                                   tuple(doors), tuple(items)))
+                                   tuple(doors), tuple(items), reachable_as_built=False))
         return FloorReach(floor=self.plan.index, start=start_kind, start_point=start_point,
                           start_room=start_room,
                           start_door=self.front.id if self.front else None, note=note,
-                          rooms=tuple(rooms), elapsed_seconds=time.perf_counter() - started)
+                          rooms=tuple(rooms), elapsed_seconds=time.perf_counter() - started,
+                          closed_doors=tuple(d.id for d in self.plan.doors if not d.passable))
 
     # -- the start ---------------------------------------------------------------------
 

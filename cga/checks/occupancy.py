@@ -17,8 +17,12 @@ position of the lower-left corner of the lower-left cell, as in a map YAML file.
 are drawn with their outlines, so a cell an obstacle crosses is occupied and thin parts
 never vanish; positions are accurate to one cell.
 
-Static furniture (rugs, door and window details) is not an obstacle: rugs are walked
-over and a door leaf stands in a gap a robot drives through.
+Static furniture (rugs, window frames) is not an obstacle: rugs are walked over and a
+window frame stands in a wall. A door leaf is one, where the build leaves it (DESIGN §16):
+a closed leaf shuts its doorway on the map, an open one stands against its jamb; its
+shadow is that of its collision box (:mod:`cga.doors`), the one every robot format uses.
+``include_doors=False`` draws the building with every door open, which the navigability
+check uses to tell rooms cut off from rooms behind a door the robot must open.
 """
 
 from __future__ import annotations
@@ -65,6 +69,8 @@ class Obstacle:
     footprint: BaseGeometry
     room: int | None = None
     """The room a furniture item stands in (None for the structure)."""
+    door: int | None = None
+    """The id of the door whose leaf this is (None for anything else)."""
 
 
 @dataclass(frozen=True)
@@ -144,9 +150,12 @@ class OccupancyGrid:
         return mask
 
 
-def obstacle_nodes(nodes: Sequence[SceneNode]) -> list[SceneNode]:
-    """Nodes that can block a robot: the structure and the solid (dynamic) furniture."""
-    return [n for n in nodes if not (n.kind == "furniture" and n.static)]
+def obstacle_nodes(nodes: Sequence[SceneNode], *, include_doors: bool = True) -> list[SceneNode]:
+    """Nodes that can block a robot: the structure, the solid (dynamic) furniture and,
+    with ``include_doors``, the door leaves."""
+    return [n for n in nodes
+            if not (n.kind == "furniture" and n.static)
+            or (include_doors and n.door is not None)]
 
 
 def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
@@ -250,7 +259,7 @@ def grid_resolution(resolution: float, width: float, depth: float) -> float:
 
 def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: float = 0.05,
                    band: tuple[float, float] = (0.05, 1.2), margin: float = 0.5,
-                   include_furniture: bool = True) -> OccupancyGrid:
+                   include_furniture: bool = True, include_doors: bool = True) -> OccupancyGrid:
     """Rasterise one floor's obstacles in the robot's height band.
 
     Parameters
@@ -270,6 +279,8 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
         Free border (m) around the footprint, so the outside of a front door is on the map.
     include_furniture
         False draws the structure only (what the building itself allows).
+    include_doors
+        False leaves the door leaves out (every door open).
 
     Returns
     -------
@@ -303,8 +314,8 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
     _paint(free_mask, plan.footprint, x_min, z_min, resolution)
     extent = shapely.box(x_min, z_min, x_min + cols * resolution, z_min + rows * resolution)
     obstacles = []
-    for node in obstacle_nodes(nodes):
-        if node.kind == "furniture" and not include_furniture:
+    for node in obstacle_nodes(nodes, include_doors=include_doors):
+        if node.kind == "furniture" and node.door is None and not include_furniture:
             continue
         if not _meets(node, y0, y1, extent):
             continue
@@ -312,7 +323,8 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
         if footprint.is_empty:
             continue
         obstacles.append(Obstacle(node.path, node.kind, footprint,
-                                  node.item.room if node.item is not None else None))
+                                  node.item.room if node.item is not None else None,
+                                  node.door.door if node.door is not None else None))
         _paint(occupied, footprint, x_min, z_min, resolution)
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
                          resolution=resolution, floor=plan.index, band=(y0, y1),

@@ -15,15 +15,18 @@ from pathlib import Path
 from cga.scene import Scene, SceneNode
 
 from .glb import export_glb
+from .mjcf import export_mjcf
 from .obj import export_obj
 from .plan import export_plans
 from .rosmap import export_rosmap
 from .scene_json import export_scene_json
 from .sdf import export_sdf
 from .urdf import export_urdf
+from .usd import export_usd
 from .view import export_view
 
-__all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS", "BATCH_FORMATS"]
+__all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS", "BATCH_FORMATS", "OPTIONAL_MODULES",
+           "missing_packages"]
 
 Exporter = Callable[[Scene, Sequence[SceneNode], Path, str], list[Path]]
 """``export_x(scene, nodes, out_dir, name) -> written paths``."""
@@ -35,6 +38,8 @@ EXPORTERS: dict[str, Exporter] = {
     "obj": export_obj,
     "urdf": export_urdf,
     "sdf": export_sdf,
+    "mjcf": export_mjcf,
+    "usd": export_usd,
     "map": export_rosmap,
     "view": export_view,
 }
@@ -46,3 +51,17 @@ DEFAULT_FORMATS: tuple[str, ...] = ("glb", "json", "plan")
 BATCH_FORMATS: tuple[str, ...] = ("glb", "json")
 """What ``cga batch`` writes per seed without ``--export``: a dataset needs the model and
 its labels; plan pictures (the slowest default output) are one ``--export plan`` away."""
+
+OPTIONAL_MODULES: dict[str, tuple[str, str]] = {"usd": ("pxr", "usd-core")}
+"""Format → (module it imports, package that provides it) for formats whose library is
+not a dependency of cga: ``pip install 'cga[robot]'`` installs them all."""
+
+
+def missing_packages(formats: Sequence[str]) -> list[str]:
+    """The packages ``formats`` need that are not installed (in format order)."""
+    import importlib.util
+
+    return list(dict.fromkeys(
+        package for fmt in formats if fmt in OPTIONAL_MODULES
+        for module, package in [OPTIONAL_MODULES[fmt]]
+        if importlib.util.find_spec(module) is None))

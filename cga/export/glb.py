@@ -1,11 +1,19 @@
-"""``<name>.glb``: the building as binary glTF 2.0 (DESIGN §10).
+"""``<name>.glb``: the building as binary glTF 2.0 (DESIGN §10, §16).
 
-One glTF node per :class:`~cga.scene.SceneNode`, named by its path
-(``floor1/room3_Kitchen/wall2``, ``Lot/Body/Upper[2]``), y up, metres, world
-coordinates baked into the vertices (no node transforms). A node's ``extras`` are the
-SceneNode's extras plus its ``kind`` and ``static`` flag, so viewers and loaders get the
-semantics. Meshes that carry no colour of their own get a material of their kind's
-colour (:func:`cga.export.palette.node_color`).
+A node tree that follows the node paths: ``floor1/room3_Kitchen/wall2`` is a child of
+the group node ``floor1/room3_Kitchen``, itself a child of ``floor1``; every node keeps
+its full path as its name. Group nodes (floors, rooms, ``…/furniture``, the parts of a
+massing grammar's shape path) carry no mesh and no transform; a floor's node carries the
+floor's facts (index, elevation, height), a room's its type, area and id.
+
+Structure (walls, slabs, masses) is meshed in the building's frame. Every item is a node
+with its own pivot: a furniture item at the centre of its footprint on the floor, turned
+by its quarter turns; a door leaf at its hinge, turned by the build's door angle
+(:mod:`cga.doors`). Their meshes are given in that local frame, so instances of the same
+model (same size) share one glTF mesh, and a viewer or Blender turns an item or swings a
+door about the right point. Meshes carry normals. A node's ``extras`` are its semantic
+labels plus its ``kind`` and ``static`` flag; y up, metres. Meshes that carry no colour of
+their own get a material of their kind's colour (:func:`cga.export.palette.node_color`).
 
 The bytes are a pure function of the scene: nodes in the given order, no timestamps,
 extras with sorted keys. The same seed gives a byte-identical file (tested).
@@ -13,6 +21,7 @@ extras with sorted keys. The same seed gives a byte-identical file (tested).
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -21,12 +30,12 @@ import numpy as np
 
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
+from cga.model import FloorPlan, rotation_matrix
 from cga.scene import Scene, SceneNode
 
 from .palette import node_color
 
-__all__ = ["scene_as_glb", "export_glb", "json_safe"]
-
+__all__ = ["scene_as_glb", "export_glb", "json_safe", "node_pivot"]
 
 def json_safe(value: Any) -> Any:
     """``value`` as plain JSON data: numpy scalars/arrays → numbers/lists, tuples → lists,
@@ -54,9 +63,24 @@ def json_safe(value: Any) -> Any:
     raise TypeError(f"cannot store a {type(value).__name__} in glTF extras")
 
 
-def _export_mesh(node: SceneNode) -> Any:
-    """A copy of the node's mesh without metadata (which trimesh would write as mesh
-    extras), coloured by kind when it has no colours of its own."""
+def node_pivot(node: SceneNode) -> np.ndarray:
+    """4×4 world transform of a node's own frame: a door leaf's hinge frame at its angle,
+    a furniture item's footprint centre on its floor turned by its quarter turns, the
+    identity for structure."""
+    if node.door is not None:
+        return node.door.frame()
+    if node.kind != "furniture":
+        return np.eye(4)
+    (x0, y0, z0), (x1, _, z1) = node.mesh.bounds
+    matrix = np.eye(4)
+    matrix[:3, :3] = rotation_matrix(node.item.rotation if node.item is not None else 0)
+    matrix[:3, 3] = ((x0 + x1) / 2, y0, (z0 + z1) / 2)
+    return matrix
+
+
+def _local_mesh(node: SceneNode, pivot: np.ndarray) -> Any:
+    """A copy of the node's mesh in its pivot's frame, without metadata (which trimesh
+    would write as mesh extras), coloured by kind when it has no colours of its own."""
     import trimesh
     from trimesh.visual.material import PBRMaterial
 
@@ -69,12 +93,45 @@ def _export_mesh(node: SceneNode) -> Any:
         visual = trimesh.visual.TextureVisuals(material=material)
     else:
         visual = visual.copy()
-    return trimesh.Trimesh(vertices=np.asarray(source.vertices, dtype=float),
-                           faces=np.asarray(source.faces), visual=visual, process=False)
+    inverse = np.linalg.inv(pivot)
+    vertices = np.asarray(source.vertices, dtype=float) @ inverse[:3, :3].T + inverse[:3, 3]
+    # micrometre grid: instances of one model land on identical local vertices
+    return trimesh.Trimesh(vertices=np.round(vertices, 6) + 0.0, faces=np.asarray(source.faces),
+                           visual=visual, process=False)
+
+
+def _mesh_key(mesh: Any) -> str:
+    digest = hashlib.sha1()
+    digest.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
+    digest.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
+    visual = mesh.visual
+    if visual.kind == "vertex":
+        digest.update(np.ascontiguousarray(visual.vertex_colors).tobytes())
+    else:
+        digest.update(repr(getattr(visual.material, "baseColorFactor", None)).encode())
+    return digest.hexdigest()
+
+
+def _group_extras(scene: Scene) -> dict[str, dict[str, Any]]:
+    """The facts of the floor and room group nodes, by group path."""
+    out: dict[str, dict[str, Any]] = {}
+    for plan in scene.floors:
+        out[f"floor{plan.index}"] = {"kind": "floor", "floor": plan.index,
+                                     "elevation": plan.elevation, "height": plan.height,
+                                     "walking_surface": plan.floor_y}
+        for room in plan.rooms:
+            out[f"floor{plan.index}/{room.label}"] = _room_extras(plan, room.id)
+    return out
+
+
+def _room_extras(plan: FloorPlan, room_id: int) -> dict[str, Any]:
+    room = plan.room(room_id)
+    return {"kind": "room", "floor": plan.index, "room": room.id, "type": room.type,
+            "area": room.area, "circulation": room.circulation}
 
 
 def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
-    """The scene's nodes as a binary glTF document.
+    """The scene's nodes as a binary glTF document with a node tree (module notes).
 
     Raises
     ------
@@ -83,21 +140,51 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     """
     import trimesh
 
-    tm_scene = trimesh.Scene()
+    root = scene.name
+    # the base frame has one child, the building node, so it is not written: the glTF
+    # scene's one root is the building
+    tm_scene = trimesh.Scene(base_frame="world")
+    tm_scene.graph.update(frame_from="world", frame_to=root, matrix=np.eye(4),
+                          metadata=json_safe({"kind": "building", "name": scene.name,
+                                              "seed": scene.seed}))
+    groups = _group_extras(scene)
     seen: set[str] = set()
+    meshes: dict[str, str] = {}
     for node in nodes:
-        if node.path in seen:
+        if node.path in seen or node.path in (root, "world"):
             raise ExportError(f"two scene nodes are both named {node.path!r}")
         seen.add(node.path)
         try:
             extras = json_safe({**node.labels, "kind": node.kind, "static": node.static})
         except TypeError as error:
             raise ExportError(f"node {node.path!r}: {error}") from None
-        tm_scene.add_geometry(_export_mesh(node), node_name=node.path, geom_name=node.path,
-                              metadata=extras)
+        parent = _parent(tm_scene, node.path, root, groups)
+        pivot = node_pivot(node)
+        mesh = _local_mesh(node, pivot)
+        key = _mesh_key(mesh)
+        if key not in meshes:
+            base = node.item.model if node.item is not None else node.path
+            meshes[key] = base if base not in tm_scene.geometry else f"{base}#{len(meshes)}"
+            tm_scene.geometry[meshes[key]] = mesh
+        tm_scene.graph.update(frame_from=parent, frame_to=node.path, matrix=pivot,
+                              geometry=meshes[key], metadata=extras)
     tm_scene.metadata.update(json_safe({"generator": "cga", "name": scene.name,
                                         "seed": scene.seed, "units": "metres", "up": "y"}))
-    return tm_scene.export(file_type="glb")
+    return tm_scene.export(file_type="glb", include_normals=True, unitize_normals=True)
+
+
+def _parent(tm_scene: Any, path: str, root: str, groups: Mapping[str, dict[str, Any]]) -> str:
+    """The group node above ``path``, made (with its own ancestors) when missing."""
+    parent = root
+    parts = path.split("/")
+    for depth in range(1, len(parts)):
+        group = "/".join(parts[:depth])
+        if group not in tm_scene.graph.nodes:
+            extras = groups.get(group, {"kind": "group"})
+            tm_scene.graph.update(frame_from=parent, frame_to=group, matrix=np.eye(4),
+                                  metadata=json_safe(extras))
+        parent = group
+    return parent
 
 
 def export_glb(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: str) -> list[Path]:

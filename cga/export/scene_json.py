@@ -87,6 +87,7 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         A value cannot be represented in JSON (e.g. a NaN in the checks).
     """
     node_paths = {node.path for node in nodes}
+    leaves = {node.path: node for node in nodes if node.door is not None}
     floors = scene.floors
     document = {
         "format": FORMAT,
@@ -106,7 +107,7 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "walls": [_wall(p, w) for p in floors for w in p.walls],
         "doors": [_door(p, d) for p in floors for d in p.doors],
         "windows": [_window(p, w) for p in floors for w in p.windows],
-        "furniture": [_furniture(p, f, node_paths) for p in floors for f in p.furniture],
+        "furniture": [_furniture(p, f, node_paths, leaves) for p in floors for f in p.furniture],
         "room_graph": [e for p in floors for e in _graph_edges(p)],
         "nodes": [_node(n) for n in nodes],
         "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
@@ -190,7 +191,18 @@ def _door(plan: FloorPlan, door: Door) -> dict[str, Any]:
         "hinge": door.hinge,
         "front": door.is_front,
         "reason": door.reason,
+        **_door_joint(plan, door),
     }
+
+
+def _door_joint(plan: FloorPlan, door: Door) -> dict[str, Any]:
+    """The door's state and its leaf's hinge (:mod:`cga.doors`), in the world frame."""
+    from cga.doors import door_leaf
+
+    leaf = door_leaf(plan, door, thickness=1e-3)  # the hinge does not depend on it
+    return {"state": door.state, "angle_degrees": math.degrees(door.angle),
+            "limits_degrees": [math.degrees(leaf.lower), math.degrees(leaf.upper)],
+            "hinge_point": list(leaf.hinge), "hinge_axis": list(leaf.axis)}
 
 
 def _window(plan: FloorPlan, window: Window) -> dict[str, Any]:
@@ -206,22 +218,28 @@ def _window(plan: FloorPlan, window: Window) -> dict[str, Any]:
     }
 
 
-def _furniture(plan: FloorPlan, item: FurnitureItem, node_paths: set[str]) -> dict[str, Any]:
+def _furniture(plan: FloorPlan, item: FurnitureItem, node_paths: set[str],
+               leaves: dict[str, SceneNode]) -> dict[str, Any]:
     turns = item.rotation % 4
     x, z = item.position
     y = plan.floor_y + item.elevation
     min_x, min_z, max_x, max_z = item.footprint().bounds
     path = f"floor{plan.index}/{plan.room(item.room).label}/furniture/{item.name}"
+    bbox = {"min": [min_x, y, min_z], "max": [max_x, y + item.size[1], max_z]}
+    if path in leaves:  # a door leaf stands where its hinge and angle put it
+        bounds = np.asarray(leaves[path].mesh.bounds, dtype=float)
+        bbox = {"min": bounds[0].tolist(), "max": bounds[1].tolist()}
     return {
         "floor": plan.index,
         "room": item.room,
         "name": item.name,
+        "door": item.door,
         "model": item.model,
         "parent": item.parent,
         "pose": {"position": [x, y, z], "yaw_degrees": 90.0 * turns, "quarter_turns": turns},
         "size": list(item.size),
         "front": list(item.front),
-        "bbox": {"min": [min_x, y, min_z], "max": [max_x, y + item.size[1], max_z]},
+        "bbox": bbox,
         "is_detail": item.is_detail,
         "non_collision": item.non_collision,
         "node": path if path in node_paths else None,
@@ -235,11 +253,14 @@ def _graph_edges(plan: FloorPlan) -> Iterable[dict[str, Any]]:
     for door in plan.doors:
         doors_by_pair.setdefault(frozenset(door.rooms), []).append(door.id)
     edges = sorted(tuple(sorted((int(a), int(b)))) for a, b in plan.room_graph.edges)
-    return [
-        {"floor": plan.index, "rooms": [a, b], "outside": a == OUTSIDE or b == OUTSIDE,
-         "doors": sorted(doors_by_pair.get(frozenset((a, b)), []))}
-        for a, b in edges
-    ]
+    states = {door.id: door.state for door in plan.doors}
+    out = []
+    for a, b in edges:
+        doors = sorted(doors_by_pair.get(frozenset((a, b)), []))
+        out.append({"floor": plan.index, "rooms": [a, b], "outside": a == OUTSIDE or b == OUTSIDE,
+                    "doors": doors, "door_states": [states[d] for d in doors],
+                    "passable": any(states[d] == "open" for d in doors)})
+    return out
 
 
 def _node(node: SceneNode) -> dict[str, Any]:

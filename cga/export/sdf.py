@@ -1,13 +1,22 @@
-"""SDF world output, ``<name>.world.sdf`` (SDF 1.6): the building and every item.
+"""SDF world output, ``<name>.world.sdf`` (SDFormat 1.7): the building with hinged doors,
+and every item.
 
-The world holds one static ``building`` model and one model per furniture item, each
-with its pose (ROS frame: z up, metres), a link with inertial, visual and collision
-elements, and meshes referenced by URI relative to the world file (``meshes/...``, the
-same files the URDFs use, see :mod:`cga.export.bodies`). pybullet's ``loadSDF`` returns
-one body per model; Gazebo resolves the relative URIs against the world file's folder.
+The world (:mod:`cga.export.world`, ROS frame: z up, metres) holds
 
-The building's collision carries ``concave="yes"``, pybullet's switch for keeping a
-static mesh concave (other SDF readers ignore the attribute).
+* one static model ``building``: a link ``structure`` with every structure node's visual
+  and colliders (boxes, convex meshes), and a link per door leaf on a ``revolute`` joint
+  to it at its hinge (axis, limits, damping). pybullet's ``loadSDF`` makes a static
+  model a fixed-base body whose joints still turn (it does not know joints to
+  ``world``, the other way to hold a structure in place); Gazebo keeps a static model's
+  links where they are, so there the leaves stand closed;
+* one model per item with its pose and a link with inertial, visual and collision
+  elements (static for details and rugs, which carry no collision, as in the checks).
+
+Only standard SDFormat elements are written (no reader-specific attributes), so
+``gz sdf -k`` / ``ign sdf -k`` validate it; meshes are referenced by URI relative to the
+world file (``meshes/...``, the files the URDFs use), which Gazebo and pybullet's
+``loadSDF`` resolve against the file's folder. SDFormat has no initial joint position:
+doors start closed; their build angles are in ``<name>.urdf.json`` and the scene JSON.
 """
 
 from __future__ import annotations
@@ -19,62 +28,110 @@ from pathlib import Path
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
-from .bodies import BodyFiles, RobotBody, numbers_text, write_bodies
+from .bodies import LinkFiles, numbers_text, write_link_meshes
+from .world import ROOT, Link, World, robot_world
 
 __all__ = ["SDF_VERSION", "world_as_sdf", "export_sdf"]
 
-SDF_VERSION = "1.6"
+SDF_VERSION = "1.7"
+
+STRUCTURE = "structure"
+"""Name of the building model's structure link, the parent of its doors."""
 
 
-def _geometry(parent: ET.Element, uri: str) -> None:
-    mesh = ET.SubElement(ET.SubElement(parent, "geometry"), "mesh")
-    ET.SubElement(mesh, "uri").text = uri
+def _pose(parent: ET.Element, xyz: Sequence[float], yaw: float = 0.0) -> None:
+    ET.SubElement(parent, "pose").text = numbers_text([*xyz, 0.0, 0.0, yaw])
 
 
-def _model(world: ET.Element, body: RobotBody, files: BodyFiles) -> None:
-    model = ET.SubElement(world, "model", name=body.name)
-    # "1"/"0" rather than "true"/"false": pybullet's SDF reader only understands digits
-    ET.SubElement(model, "static").text = "1" if body.static else "0"
-    ET.SubElement(model, "pose").text = numbers_text([*body.pose.position, *body.pose.rpy])
-    link = ET.SubElement(model, "link", name="link")
-    # Static models get an inertial too (Gazebo ignores it; without one pybullet's SDF
-    # reader warns once per link): a unit mass, unit inertia placeholder.
-    mass, inertia_diagonal = ((body.mass, body.inertia) if not body.static
-                              else (1.0, (1.0, 1.0, 1.0)))
+def _inertial(link: ET.Element, source: Link | None) -> None:
+    """The inertial of a movable link, or (``None``) a unit placeholder for a welded or
+    static one: Gazebo ignores it, and without one pybullet's SDF reader warns."""
     inertial = ET.SubElement(link, "inertial")
-    ET.SubElement(inertial, "pose").text = "0 0 0 0 0 0"
-    ET.SubElement(inertial, "mass").text = numbers_text([mass])
+    _pose(inertial, source.com if source else (0.0, 0.0, 0.0))
+    ET.SubElement(inertial, "mass").text = numbers_text([source.mass if source else 1.0])
     inertia = ET.SubElement(inertial, "inertia")
-    for key, value in zip(("ixx", "iyy", "izz"), inertia_diagonal):
+    for key, value in zip(("ixx", "iyy", "izz"), source.inertia if source else (1.0,) * 3):
         ET.SubElement(inertia, key).text = numbers_text([value])
     for key in ("ixy", "ixz", "iyz"):
         ET.SubElement(inertia, key).text = "0"
-    visual = ET.SubElement(link, "visual", name="visual")
-    _geometry(visual, files.visual)
-    material = ET.SubElement(visual, "material")
-    rgba = numbers_text([*body.color, 1.0])
-    ET.SubElement(material, "ambient").text = rgba
-    ET.SubElement(material, "diffuse").text = rgba
-    for k, uri in enumerate(files.collisions):
-        attributes = {"name": f"collision{k}"}
-        if body.concave:
-            attributes["concave"] = "yes"
-        _geometry(ET.SubElement(link, "collision", attributes), uri)
 
 
-def world_as_sdf(world_name: str, bodies: Sequence[RobotBody],
-                 files: dict[str, BodyFiles]) -> str:
-    """The SDF document of a world holding ``bodies`` (mesh paths from ``files``)."""
+def _geometry(parent: ET.Element, source: Link, files: LinkFiles, world: World) -> None:
+    """Visual and collision elements of ``source`` into the SDF link ``parent``."""
+    if files.visual is not None:
+        visual = ET.SubElement(parent, "visual", name=f"{source.name}_visual")
+        mesh = ET.SubElement(ET.SubElement(visual, "geometry"), "mesh")
+        ET.SubElement(mesh, "uri").text = files.visual
+        material = ET.SubElement(visual, "material")
+        color = world.materials.get(source.visual[0].material, (0.8, 0.8, 0.8))
+        rgba = numbers_text([*color, 1.0])
+        ET.SubElement(material, "ambient").text = rgba
+        ET.SubElement(material, "diffuse").text = rgba
+    for collider in source.colliders:
+        collision = ET.SubElement(parent, "collision", name=collider.name)
+        if collider.box is not None:
+            _pose(collision, collider.box.centre, collider.box.yaw)
+            box = ET.SubElement(ET.SubElement(collision, "geometry"), "box")
+            ET.SubElement(box, "size").text = numbers_text(collider.box.extents)
+        else:
+            mesh = ET.SubElement(ET.SubElement(collision, "geometry"), "mesh")
+            ET.SubElement(mesh, "uri").text = files.colliders[collider.name]
+
+
+def _building(world_el: ET.Element, world: World, files: dict[str, LinkFiles]) -> None:
+    model = ET.SubElement(world_el, "model", name=ROOT)
+    ET.SubElement(model, "static").text = "1"
+    _pose(model, (0.0, 0.0, 0.0))
+    structure = ET.SubElement(model, "link", name=STRUCTURE)
+    _inertial(structure, None)
+    for link in world.links:
+        if link.role == "structure" and link.name != ROOT:
+            _geometry(structure, link, files[link.name], world)
+    for joint in world.joints:
+        if joint.kind != "revolute":
+            continue
+        leaf = world.link(joint.child)
+        link = ET.SubElement(model, "link", name=leaf.name)
+        _pose(link, leaf.pose.position, leaf.pose.yaw)
+        _inertial(link, leaf)
+        _geometry(link, leaf, files[leaf.name], world)
+        element = ET.SubElement(model, "joint", name=joint.name, type="revolute")
+        ET.SubElement(element, "parent").text = STRUCTURE
+        ET.SubElement(element, "child").text = leaf.name
+        axis = ET.SubElement(element, "axis")
+        ET.SubElement(axis, "xyz").text = numbers_text(joint.axis)
+        limit = ET.SubElement(axis, "limit")
+        ET.SubElement(limit, "lower").text = numbers_text([joint.lower])
+        ET.SubElement(limit, "upper").text = numbers_text([joint.upper])
+        dynamics = ET.SubElement(axis, "dynamics")
+        ET.SubElement(dynamics, "damping").text = "2"
+        ET.SubElement(dynamics, "friction").text = "1"
+
+
+def _item(world_el: ET.Element, link: Link, files: LinkFiles, world: World) -> None:
+    model = ET.SubElement(world_el, "model", name=link.name)
+    # "1"/"0" rather than "true"/"false": pybullet's SDF reader only understands digits
+    ET.SubElement(model, "static").text = "0" if link.movable else "1"
+    _pose(model, link.pose.position, link.pose.yaw)
+    element = ET.SubElement(model, "link", name="link")
+    _inertial(element, link if link.movable else None)
+    _geometry(element, link, files, world)
+
+
+def world_as_sdf(world: World, files: dict[str, LinkFiles]) -> str:
+    """The SDF document of ``world`` (mesh paths from ``files``)."""
     root = ET.Element("sdf", version=SDF_VERSION)
-    world = ET.SubElement(root, "world", name=world_name)
-    ET.SubElement(world, "gravity").text = "0 0 -9.81"
-    sun = ET.SubElement(world, "light", name="sun", type="directional")
+    world_el = ET.SubElement(root, "world", name=world.name)
+    ET.SubElement(world_el, "gravity").text = "0 0 -9.81"
+    sun = ET.SubElement(world_el, "light", name="sun", type="directional")
     ET.SubElement(sun, "cast_shadows").text = "true"
-    ET.SubElement(sun, "pose").text = "0 0 20 0 0 0"
+    _pose(sun, (0.0, 0.0, 20.0))
     ET.SubElement(sun, "diffuse").text = "0.9 0.9 0.9 1"
     ET.SubElement(sun, "direction").text = "-0.4 0.3 -1"
-    for body in bodies:
-        _model(world, body, files[body.name])
+    _building(world_el, world, files)
+    for link in world.links:
+        if link.role == "item":
+            _item(world_el, link, files[link.name], world)
     ET.indent(root)
     return '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
@@ -85,10 +142,11 @@ def export_sdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: st
     Raises
     ------
     ExportError
-        See :func:`cga.export.bodies.write_bodies`.
+        See :func:`cga.export.world.robot_world`.
     """
     out = Path(out_dir)
-    bodies, files = write_bodies(scene, nodes, out, name)
-    world = atomic_write(out / f"{name}.world.sdf", world_as_sdf(name, bodies, files))
-    return [world] + list(dict.fromkeys(
-        out / f for body in bodies for f in files[body.name].paths()))
+    world = robot_world(scene, nodes)
+    files = write_link_meshes(world, out, name)
+    written = atomic_write(out / f"{name}.world.sdf", world_as_sdf(world, files))
+    return [written] + list(dict.fromkeys(
+        out / f for link in world.links for f in files[link.name].paths()))

@@ -70,6 +70,10 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
         The item's model is not in the library.
     """
     model = library.get(item.model)
+    if item.door is not None:  # a door leaf hangs on its hinge
+        from .doors import leaf_node
+
+        return leaf_node(item, plan, model)
     matrix = item_transform(item, model, plan.floor_y)
     parts = tuple(_posed(p, matrix) for p in model.parts)
     mesh = _posed(model.mesh, matrix)

@@ -6,7 +6,9 @@ table lists it: the model comes from a detail row (``isDetail``) of the room's t
 name mentions ``door`` or ``window``, else the shipped ``door`` / ``window`` model. Each
 item fills its opening: width and height of the opening, depth of the wall, centred in
 the wall's thickness, front towards the room (for a door: the room its leaf swings into);
-a window item is lifted to its sill (:attr:`cga.model.FurnitureItem.elevation`).
+a window item is lifted to its sill (:attr:`cga.model.FurnitureItem.elevation`). A door
+item names its door (:attr:`cga.model.FurnitureItem.door`): the meshing hangs it on the
+door's hinge at the door's angle (:mod:`cga.doors`).
 """
 
 from __future__ import annotations
@@ -70,7 +72,8 @@ def detail_items(plan: FloorPlan, rules: FurnitureRules) -> list[FurnitureItem]:
         model = detail_model(rules, "door", [types.get(room), types.get(other)])
         items.append(FurnitureItem(
             name=f"door{door.id}", model=model, room=room, position=centre,
-            rotation=rotation, size=(door.width, door.height, depth), is_detail=True))
+            rotation=rotation, size=(door.width, door.height, depth), is_detail=True,
+            door=door.id))
     for window in plan.windows:
         centre, depth, rotation = _in_wall(plan, plan.wall(window.wall), window.position,
                                            window.room, OUTSIDE)

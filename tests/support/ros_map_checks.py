@@ -63,8 +63,9 @@ def _wall_samples(wall: dict, footprint: Polygon):
 
 def check_map_against_scene(ros_map: RosMap, doc: dict, floor: int, *,
                             band: tuple[float, float] = (0.05, 1.2)) -> dict[str, int]:
-    """Assert walls and solid furniture are occupied, door centres and open floor free,
-    the outside unknown. Returns how many points of each kind were checked."""
+    """Assert walls and solid furniture are occupied, open doors' centres and open floor
+    free, closed doors shut, the outside unknown. Returns how many points of each kind
+    were checked."""
     level = next(f for f in doc["floors"] if f["index"] == floor)
     footprint = Polygon(level["footprint"]["exterior"])
     counts = {"wall": 0, "door": 0, "furniture": 0, "free": 0, "outside": 0}
@@ -74,9 +75,17 @@ def check_map_against_scene(ros_map: RosMap, doc: dict, floor: int, *,
             counts["wall"] += 1
     walls = {w["id"]: w for w in doc["walls"] if w["floor"] == floor}
     for door in (d for d in doc["doors"] if d["floor"] == floor):
-        _, _, offset = _wall_line(walls[door["wall"]], footprint)
-        x, z = np.array(door["position"]) + offset
-        assert ros_map.at_world(x, z) == FREE, ("door", floor, door["id"])
+        wall = walls[door["wall"]]
+        _, u, offset = _wall_line(wall, footprint)
+        centre = np.array(door["position"]) + offset
+        if door["state"] == "open":  # the doorway is free
+            assert ros_map.at_world(*centre) == FREE, ("door", floor, door["id"])
+        else:  # a closed leaf shuts the doorway somewhere across the wall's thickness
+            normal = np.array([-u[1], u[0]])
+            across = [ros_map.at_world(*(centre + normal * s))
+                      for s in np.linspace(-wall["thickness"] / 2, wall["thickness"] / 2, 9)]
+            if door["state"] == "closed":
+                assert OCCUPIED in across, ("closed door", floor, door["id"])
         counts["door"] += 1
     furniture = [f for f in doc["furniture"] if f["floor"] == floor]
     lo, hi = level["floor_y"] + band[0], level["floor_y"] + band[1]

@@ -1,5 +1,6 @@
 """URDF and SDF: pybullet loads them, one body per item plus the building, each where
-the scene puts it (checked against the node meshes, converted by hand here)."""
+the scene puts it (checked against the node meshes, converted by hand here); no
+reader-specific attributes."""
 
 from __future__ import annotations
 
@@ -69,10 +70,17 @@ def _check_in_place(client, bodies, nodes):
             continue
         lo, hi = (np.array(v) for v in client.getAABB(body))
         assert np.allclose([lo, hi], _ros_box(node.mesh), atol=0.01), node.path
-    lo, hi = (np.array(v) for v in client.getAABB(bodies[None]))
+    lo, hi = _body_box(client, bodies[None])
     structure = np.array([_ros_box(n.mesh) for n in nodes if n.kind != "furniture"])
     assert np.allclose(lo, structure[:, 0].min(axis=0), atol=0.01)
     assert np.allclose(hi, structure[:, 1].max(axis=0), atol=0.01)
+
+
+def _body_box(client, body):
+    """The AABB of all links of a body (the building is one link per structure node)."""
+    boxes = [client.getAABB(body, link) for link in range(-1, client.getNumJoints(body))]
+    boxes = np.array([b for b in boxes if not np.allclose(b[0], b[1])])
+    return boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
 
 
 def test_urdfs_load_with_one_body_per_item_plus_building(client, outputs, small_scene):
@@ -102,7 +110,7 @@ def test_sdf_world_loads_with_one_body_per_item_plus_building(client, outputs, s
         by_node[node.path] = ids[names.index(name)]
     _check_in_place(client, by_node, nodes)
     root = ET.parse(outputs / "house.world.sdf").getroot()
-    assert root.get("version") == "1.6"
+    assert root.get("version") == "1.7"
     for model in root.iter("model"):
         assert model.find("link/visual") is not None
         if model.findtext("static") == "0":
@@ -114,8 +122,8 @@ def test_sdf_world_loads_with_one_body_per_item_plus_building(client, outputs, s
 
 @pytest.mark.physics
 @pytest.mark.parametrize("loader", ["urdf", "sdf"])
-def test_items_rest_on_the_concave_building(client, outputs, small_scene, loader):
-    # a convex-hull building would throw the ground-floor items out of its hull
+def test_items_rest_on_the_building_pieces(client, outputs, small_scene, loader):
+    # one convex hull for the building would throw the ground-floor items out of it
     _, nodes = small_scene
     if loader == "urdf":
         bodies = list(_load_urdfs(client, outputs).values())
@@ -138,9 +146,14 @@ def test_item_urdf_has_box_inertia_and_convex_parts(outputs):
     assert float(inertia.get("iyy")) == pytest.approx(mass * (1.6**2 + 0.5**2) / 12, rel=1e-5)
     assert float(inertia.get("izz")) == pytest.approx(mass * (1.6**2 + 2.0**2) / 12, rel=1e-5)
     collisions = link.findall("collision")
-    assert len(collisions) == 1 and collisions[0].get("concave") is None
+    assert len(collisions) == 1
     building = ET.parse(outputs / "urdf" / "house.building.urdf").getroot()
-    assert building.find("link/collision").get("concave") == "yes"
+    # the building collides through boxes (walls split around openings): no concave mesh
+    shapes = [c.find("geometry")[0].tag for c in building.iter("collision")]
+    assert shapes and set(shapes) == {"box"}
+    for path in [outputs / "house.urdf", *(outputs / "urdf").iterdir()]:
+        for element in ET.parse(path).getroot().iter():
+            assert "concave" not in element.attrib, path
     assert building.find("gazebo/static").text == "true"
 
 
@@ -205,7 +218,7 @@ def test_non_convex_user_model_gets_the_same_convex_pieces_as_the_physics_check(
     import trimesh
 
     from cga.collision import collision_parts
-    from cga.export.bodies import robot_bodies
+    from cga.export.world import robot_world
     from cga.scene import Scene, SceneNode
 
     monkeypatch.setenv("CGA_CACHE_DIR", str(tmp_path / "cache"))
@@ -220,8 +233,8 @@ def test_non_convex_user_model_gets_the_same_convex_pieces_as_the_physics_check(
                      item=item_info("sculpture", mass=20.0, convex_parts=False),
                      static=False, parts=(el,))
     scene = Scene(name="t", seed=0, units=1.0, terminals=[])
-    _, (body,) = robot_bodies(scene, [SceneNode(path="floor0/slab", kind="slab", mesh=slab),
-                                      item])
+    world = robot_world(scene, [SceneNode(path="floor0/slab", kind="slab", mesh=slab), item])
+    body = world.links[-1]
     pieces = collision_parts(item)
     assert len(pieces) >= 2 and all(p.is_convex for p in pieces)
-    assert len(body.collisions) == len(pieces)
+    assert len(body.colliders) == len(pieces)

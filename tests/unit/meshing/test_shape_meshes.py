@@ -87,8 +87,11 @@ def test_glb_nodes_named_by_path_with_extras_and_world_positions():
     data = scene_as_glb(_scene(), _nodes())
     doc = gltf_json(data)
     names = [n["name"] for n in doc["nodes"]]
-    assert names == ["Lot/A[0]", "Lot/B[1]"]
-    assert doc["nodes"][0]["extras"] == {"floor": 2, "kind": "mass", "static": True,
+    # a tree along the paths: the building, the group "Lot", its two shapes
+    assert names == ["t", "Lot", "Lot/A[0]", "Lot/B[1]"]
+    assert [doc["nodes"][i]["name"] for i in doc["scenes"][0]["nodes"]] == ["t"]
+    assert doc["nodes"][0]["children"] == [1] and doc["nodes"][1]["children"] == [2, 3]
+    assert doc["nodes"][2]["extras"] == {"floor": 2, "kind": "mass", "static": True,
                                          "tags": ["x", "y"]}
     assert all("matrix" not in n for n in doc["nodes"])
     loaded = trimesh.load(io.BytesIO(data), file_type="glb")

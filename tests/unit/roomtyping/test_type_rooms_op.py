@@ -1,5 +1,7 @@
 """The grammar operation: arguments, the plan it needs, units, caching, its one child."""
 
+import math
+
 import numpy as np
 import pytest
 from shapely.geometry import box
@@ -31,7 +33,8 @@ def floor_shape(plan=None):
 
 
 def args(rules="rules.csv", **kw):
-    return {"rules": rules, "strict": False, "door_position": "random", **kw}
+    return {"rules": rules, "strict": False, "door_position": "random", "door_state": "closed",
+            **kw}
 
 
 def write(tmp_path, *rows, name="rules.csv"):
@@ -41,8 +44,9 @@ def write(tmp_path, *rows, name="rules.csv"):
 def test_registry_entry_and_signature():
     op = OperationRegistry()["type_rooms"]
     assert isinstance(op, TypeRooms)
-    assert op.signature() == "type_rooms(rules, strict=False, door_position='random')"
-    assert [p.keyword_only for p in op.params] == [False, True, True]
+    assert op.signature() == ("type_rooms(rules, strict=False, door_position='random', "
+                              "door_state='closed')")
+    assert [p.keyword_only for p in op.params] == [False, True, True, True]
     assert op.params[0].kind == "path"
 
 
@@ -119,3 +123,15 @@ def test_diagnostics_are_recorded_on_the_plan(tmp_path):
     stages = {d.stage for d in child.plan.diagnostics}
     assert stages == {"type_rooms"}
     assert all(d.floor == 0 for d in child.plan.diagnostics)
+
+
+def test_door_state_is_validated_and_sets_every_door(tmp_path):
+    write(tmp_path, "Livingroom;20;1;Kitchen;1;1;0", "Kitchen;10;0;Livingroom;0;2;0")
+    with pytest.raises(DerivationError, match="door_state must be one of 'closed', 'open', "
+                                              "'ajar', 'random'"):
+        TypeRooms().apply(floor_shape(), args(door_state="shut"), context(tmp_path))
+    (child,) = TypeRooms().apply(floor_shape(), args(door_state="OPEN"), context(tmp_path))
+    doors = child.plan.doors
+    assert doors and {(d.state, round(math.degrees(d.angle), 6)) for d in doors} == {("open", 90.0)}
+    graph = child.plan.room_graph
+    assert {graph.edges[d.rooms]["state"] for d in doors} == {"open"}

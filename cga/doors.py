@@ -1,0 +1,207 @@
+"""Door leaves on hinges: one geometric description every format and check shares.
+
+A door (:class:`cga.model.Door`) is an opening in a wall plus a leaf that turns about a
+vertical axis at the ``hinge`` end of the opening (DESIGN §16). :func:`door_leaf` derives
+the leaf's hinge frame from the plan; everything else reads it:
+
+* the meshing poses the door model in that frame at the build's angle
+  (:func:`cga.meshing.doors.leaf_node`), so glTF, plan views and renders show the state;
+* the robot exports make the leaf a body on a revolute joint at :attr:`DoorLeaf.hinge`
+  (axis :attr:`DoorLeaf.axis`, limits ``0`` to :attr:`DoorLeaf.upper`) that collides
+  through the one box :meth:`DoorLeaf.box` in every format;
+* the occupancy maps draw that box at the build's angle, so a closed door blocks a map.
+
+The hinge frame
+---------------
+Origin at the hinge jamb, on the face of the wall towards the room the leaf swings into,
+at the walking surface; ``x`` runs along the closed leaf towards the latch, ``y`` is up,
+``z = x × y``. The closed leaf lies behind that face (inside the opening), so turning it
+by up to 180° about the hinge never sweeps through the jamb or the wall, and the
+quarter circle it sweeps while opening to :data:`~cga.model.DOOR_OPEN_ANGLE` is the
+swing the plans draw and the furniture keeps free
+(:func:`cga.operations.furniture.clearance.door_keepouts` centres it on the same point).
+The leaf is :data:`SIDE_GAP` narrower than the opening at each side, so its far edge,
+whose back corner sweeps out by ``√(w² + t²) − w`` (under 1 mm for a 0.9 m × 0.04 m leaf),
+never touches the latch jamb.
+
+Door models follow the shipped ``door`` model: front towards −z (the swing side), hinges
+at −x, origin at the centre of the footprint on the floor; the leaf's slab is the model's
+largest part. A leaf hinged at the other end is the model mirrored (a left-hand door).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from cga.model import DOOR_OPEN_ANGLE, Door, FloorPlan
+
+if TYPE_CHECKING:  # pragma: no cover
+    import trimesh
+
+
+__all__ = ["SIDE_GAP", "BOTTOM_GAP", "TOP_GAP", "DoorLeaf", "door_leaf", "leaf_mesh",
+           "leaf_model_matrix", "rotation_about_y", "slab_range"]
+
+SIDE_GAP = 0.005
+"""m: clearance between the leaf and each jamb."""
+
+BOTTOM_GAP = 0.01
+"""m: clearance under the leaf, so it never scrapes the floor."""
+
+TOP_GAP = 0.005
+"""m: clearance between the leaf and the head of the opening."""
+
+
+def rotation_about_y(angle: float) -> np.ndarray:
+    """3×3 right-handed rotation by ``angle`` radians about world +y."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+@dataclass(frozen=True)
+class DoorLeaf:
+    """A door leaf and its hinge, in world coordinates (metres, y up).
+
+    ``hinge`` is the origin of the hinge frame (see the module notes) and ``along`` the
+    plan direction ``(x, z)`` of its x axis with the leaf closed; ``axis`` is the world
+    hinge axis, ``(0, ±1, 0)``, oriented so that a positive angle opens the leaf into
+    ``swing_room``. ``size`` is the leaf's box (width along x, height, thickness), which
+    sits at :meth:`box` in the hinge frame. ``angle`` is how far the build leaves it open,
+    within ``lower``..``upper``.
+    """
+
+    floor: int
+    door: int
+    rooms: tuple[int, int]
+    swing_room: int
+    state: str
+    angle: float
+    hinge: tuple[float, float, float]
+    along: tuple[float, float]
+    axis: tuple[float, float, float]
+    size: tuple[float, float, float]
+    lower: float = 0.0
+    upper: float = DOOR_OPEN_ANGLE
+
+    @property
+    def name(self) -> str:
+        """``floor{i}_door{id}``: unique in a building."""
+        return f"floor{self.floor}_door{self.door}"
+
+    def box(self) -> tuple[np.ndarray, np.ndarray]:
+        """Centre and full extents of the leaf's box in the hinge frame."""
+        width, height, thickness = self.size
+        # The swing side is the frame's −z when the axis is +y (and +z when it is −y):
+        # the leaf lies behind the swing face, on the other side.
+        side = 1.0 if self.axis[1] > 0 else -1.0
+        centre = np.array([SIDE_GAP + width / 2, BOTTOM_GAP + height / 2, side * thickness / 2])
+        return centre, np.array(self.size, dtype=float)
+
+    def frame(self, angle: float | None = None) -> np.ndarray:
+        """4×4 world transform of the hinge frame with the leaf open by ``angle``
+        (default: the build's angle)."""
+        turn = self.angle if angle is None else angle
+        x = np.array([self.along[0], 0.0, self.along[1]])
+        y = np.array([0.0, 1.0, 0.0])
+        closed = np.column_stack([x, y, np.cross(x, y)])
+        matrix = np.eye(4)
+        matrix[:3, :3] = rotation_about_y(turn * self.axis[1]) @ closed
+        matrix[:3, 3] = self.hinge
+        return matrix
+
+    def corners(self, angle: float | None = None) -> np.ndarray:
+        """The 8 world corners of the leaf's box open by ``angle``."""
+        centre, extents = self.box()
+        signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)])
+        local = centre + signs * extents / 2
+        matrix = self.frame(angle)
+        return local @ matrix[:3, :3].T + matrix[:3, 3]
+
+    def footprint(self, angle: float | None = None) -> Any:
+        """The leaf's shadow in plan ``(x, z)`` (a shapely polygon)."""
+        from shapely.geometry import MultiPoint
+
+        return MultiPoint(self.corners(angle)[:, [0, 2]]).convex_hull
+
+    def labels(self) -> dict[str, Any]:
+        """The door's facts as JSON values (glTF extras, scene JSON)."""
+        return {"door": self.door, "state": self.state, "angle": self.angle,
+                "lower": self.lower, "upper": self.upper, "hinge": list(self.hinge),
+                "axis": list(self.axis), "leaf_size": list(self.size),
+                "swing_room": self.swing_room}
+
+
+def door_leaf(plan: FloorPlan, door: Door, thickness: float) -> DoorLeaf:
+    """The leaf of ``door`` on floor ``plan``, ``thickness`` metres thick.
+
+    Raises
+    ------
+    ValueError
+        The opening is too small for a leaf (narrower or lower than its gaps), or the
+        thickness is not positive.
+    """
+    from cga.operations.furniture.clearance import face_offset
+
+    width = door.width - 2 * SIDE_GAP
+    height = door.height - BOTTOM_GAP - TOP_GAP
+    if not (width > 0 and height > 0 and thickness > 0):
+        raise ValueError(f"door {door.id} on floor {plan.index}: a {door.width:.3f} m × "
+                         f"{door.height:.3f} m opening takes no {thickness:.3f} m leaf")
+    wall = plan.wall(door.wall)
+    along = wall.direction if door.hinge == "start" else -wall.direction
+    normal = wall.normal_into(door.swing_room)
+    face = np.asarray(door.position) + normal * face_offset(plan, door.swing_room, door.position)
+    hinge = face - along * door.width / 2
+    # the axis whose positive turn takes `along` towards `normal` is along × normal
+    # (both horizontal, so it is vertical)
+    axis_y = float(np.sign(along[1] * normal[0] - along[0] * normal[1]))
+    return DoorLeaf(
+        floor=plan.index, door=door.id, rooms=door.rooms, swing_room=door.swing_room,
+        state=door.state, angle=float(door.angle),
+        hinge=(float(hinge[0]), float(plan.floor_y), float(hinge[1])),
+        along=(float(along[0]), float(along[1])), axis=(0.0, axis_y, 0.0),
+        size=(float(width), float(height), float(thickness)))
+
+
+def leaf_model_matrix(leaf: DoorLeaf, bounds: np.ndarray, slab_z: tuple[float, float]
+                      ) -> np.ndarray:
+    """4×4 matrix taking a door model's frame into the hinge frame: its x extent onto the
+    leaf's width (hinges at −x to the hinge side), its y extent onto the leaf's height, and
+    its slab (``slab_z``, the z range of its largest part) onto the leaf's box, front (−z)
+    on the swing face; handles keep their depth."""
+    centre, extents = leaf.box()
+    (x0, y0, _), (x1, y1, _) = bounds
+    side = 1.0 if leaf.axis[1] > 0 else -1.0
+    matrix = np.eye(4)
+    matrix[0, 0] = extents[0] / (x1 - x0)
+    matrix[1, 1] = extents[1] / (y1 - y0)
+    matrix[2, 2] = side
+    matrix[:3, 3] = (centre[0] - extents[0] / 2 - x0 * matrix[0, 0],
+                     centre[1] - extents[1] / 2 - y0 * matrix[1, 1],
+                     -side * slab_z[0])
+    return matrix
+
+
+def leaf_mesh(mesh: "trimesh.Trimesh", matrix: np.ndarray) -> "trimesh.Trimesh":
+    """``mesh`` moved by ``matrix``, its triangles turned over when the matrix mirrors
+    (a leaf hinged at the model's +x side), colours kept."""
+    import trimesh
+
+    faces = np.asarray(mesh.faces)
+    if np.linalg.det(matrix[:3, :3]) < 0:
+        faces = faces[:, ::-1]
+    return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
+                           faces=faces.copy(), visual=mesh.visual.copy(), process=False)
+
+
+def slab_range(parts: Sequence["trimesh.Trimesh"]) -> tuple[float, float]:
+    """The z range of a door model's slab: its largest part by box volume."""
+    boxes = [np.ptp(p.bounds, axis=0) for p in parts]
+    slab = parts[int(np.argmax([float(np.prod(b)) for b in boxes]))]
+    return (float(slab.bounds[0, 2]), float(slab.bounds[1, 2]))
+

@@ -1,0 +1,62 @@
+"""Door leaves as scene nodes: the door model hung on its hinge (:mod:`cga.doors`).
+
+A door's detail item (``FurnitureItem.door`` set) is not posed by its quarter turns like
+other items: its model is fitted to the leaf's box in the hinge frame and turned by the
+build's door angle, so every output shows the door as the build leaves it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import trimesh
+
+from cga.doors import door_leaf, leaf_mesh, leaf_model_matrix, slab_range
+from cga.model import FloorPlan, FurnitureItem
+from cga.operations.furniture.library import FurnitureModel
+from cga.scene import ItemInfo, SceneNode
+
+__all__ = ["leaf_node"]
+
+
+def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> SceneNode:
+    """The scene node of a door item (``item.door`` set): the door model hung on its
+    door's hinge at the door's angle, static, with :attr:`SceneNode.door` describing the
+    hinge (its facts are also the node's ``extras``, for the glTF). ``parts`` is the
+    leaf's one collision box, posed; its mass is that box's volume × the model's density.
+
+    Raises
+    ------
+    KeyError
+        ``item.door`` is not a door of ``plan``.
+    """
+    door = next((d for d in plan.doors if d.id == item.door), None)
+    if door is None:
+        raise KeyError(f"furniture item {item.name!r} hangs in door {item.door}, which "
+                       f"floor {plan.index} does not have")
+    slab = slab_range(model.parts)
+    leaf = door_leaf(plan, door, slab[1] - slab[0])
+    frame = leaf.frame()
+    mesh = leaf_mesh(model.mesh, frame @ leaf_model_matrix(leaf, model.mesh.bounds, slab))
+    centre, extents = leaf.box()
+    box = trimesh.creation.box(extents=extents, transform=frame @ _translation(centre))
+    room = plan.room(item.room)
+    return SceneNode(
+        path=f"floor{plan.index}/{room.label}/furniture/{item.name}",
+        kind="furniture",
+        mesh=mesh,
+        extras=leaf.labels(),
+        static=True,
+        parts=(box,),
+        item=ItemInfo(model=model.name, model_path=model.path, room=item.room, name=item.name,
+                      parent=item.parent, rotation=item.rotation, density=model.density,
+                      mass=float(np.prod(extents)) * model.density, convex_parts=True),
+        door=leaf,
+    )
+
+
+def _translation(offset: Sequence[float]) -> np.ndarray:
+    matrix = np.eye(4)
+    matrix[:3, 3] = offset
+    return matrix
