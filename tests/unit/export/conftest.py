@@ -30,7 +30,7 @@ SETTINGS = FloorSettings()
 T = SETTINGS.wall_thickness
 FOOTPRINT = box(0.0, 0.0, 8.0, 6.0)
 
-# (id, start, end, outer, rooms)
+# (id, start, end, outer, rooms): rooms (left, right) walking from start to end
 WALLS = [
     (0, (0.0, 0.0), (5.0, 0.0), True, (0, OUTSIDE)),
     (1, (5.0, 0.0), (8.0, 0.0), True, (1, OUTSIDE)),
@@ -39,9 +39,9 @@ WALLS = [
     (4, (8.0, 6.0), (5.0, 6.0), True, (2, OUTSIDE)),
     (5, (5.0, 6.0), (0.0, 6.0), True, (0, OUTSIDE)),
     (6, (0.0, 6.0), (0.0, 0.0), True, (0, OUTSIDE)),
-    (7, (5.0, 0.0), (5.0, 3.0), False, (1, 0)),
-    (8, (5.0, 3.0), (5.0, 6.0), False, (2, 0)),
-    (9, (5.0, 3.0), (8.0, 3.0), False, (1, 2)),
+    (7, (5.0, 0.0), (5.0, 3.0), False, (0, 1)),
+    (8, (5.0, 3.0), (5.0, 6.0), False, (0, 2)),
+    (9, (5.0, 3.0), (8.0, 3.0), False, (2, 1)),
 ]
 ROOM_BOXES = {0: (0.0, 0.0, 5.0, 6.0), 1: (5.0, 0.0, 8.0, 3.0), 2: (5.0, 3.0, 8.0, 6.0)}
 
@@ -53,13 +53,15 @@ def _interior(polygon):
 
 
 def _doors(floor: int) -> tuple[Door, ...]:
+    # open: the scene has no door leaves, so its doorways are free
+    opened = {"state": "open", "angle": math.pi / 2}
     doors = [
-        Door(0, 7, (0, 1), (5.0, 1.5), 0.9, 2.1, swing_room=1, hinge="start"),
-        Door(1, 9, (1, 2), (6.5, 3.0), 0.9, 2.1, swing_room=2, hinge="end"),
+        Door(0, 7, (0, 1), (5.0, 1.5), 0.9, 2.1, swing_room=1, hinge="start", **opened),
+        Door(1, 9, (1, 2), (6.5, 3.0), 0.9, 2.1, swing_room=2, hinge="end", **opened),
     ]
     if floor == 0:
         doors.append(Door(2, 5, (0, OUTSIDE), (2.5, 6.0), 1.0, 2.1, swing_room=0,
-                          hinge="start", is_front=True, reason="front"))
+                          hinge="start", is_front=True, reason="front", **opened))
     return tuple(doors)
 
 

@@ -16,7 +16,7 @@ from shapely.geometry import MultiPoint
 
 from cga.doors import door_leaf
 from cga.model import Door
-from cga.operations.floorplan.solids import wall_footprints
+from cga.meshing.solids import wall_footprints
 from cga.operations.roomtyping.door_states import AJAR_RANGE, with_door_states
 
 T = 0.04
