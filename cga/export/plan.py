@@ -8,7 +8,8 @@ What is drawn (DESIGN §10), bottom to top:
 * walls as solid dark poured walls of their true thickness: the footprint minus the
   rooms' free floor, with the openings cut out;
 * windows as thin double lines in their wall gap; doors as gaps with the leaf drawn
-  open and a dashed swing arc into the swing room; the front door marked outside;
+  where the build leaves it (closed across the gap, ajar, open) and a dashed swing arc
+  into the swing room; the front door marked outside;
 * room labels (type, area in m²) at the most open point of the room's free floor;
 * a title with the floor number, a north arrow, a 1 m / 5 m scale bar and a legend of
   the room types on the floor.
@@ -331,8 +332,11 @@ def _draw_doors(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
         hinge = start + u * hinge_s + n * face
         closed = start + u * free_s + n * face
         tip = hinge + n * door.width
+        # the leaf where the build leaves it (closed, ajar or open), the arc its full swing
+        latch = (closed - hinge) / door.width
+        leaf = hinge + (latch * math.cos(door.angle) + n * math.sin(door.angle)) * door.width
         h, t, c = paper.point(*hinge), paper.point(*tip), paper.point(*closed)
-        drawing.add("doors", Polyline((h, t), _LEAF, css_class="door-leaf"))
+        drawing.add("doors", Polyline((h, paper.point(*leaf)), _LEAF, css_class="door-leaf"))
         a0 = math.atan2(t[1] - h[1], t[0] - h[0])
         a1 = math.atan2(c[1] - h[1], c[0] - h[0])
         a1 = a0 + (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
