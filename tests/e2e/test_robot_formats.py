@@ -25,9 +25,9 @@ mujoco = pytest.importorskip("mujoco")
 pxr = pytest.importorskip("pxr")
 
 import pybullet  # noqa: E402
-from pybullet_utils.bullet_client import BulletClient  # noqa: E402
 
 from cga.pipeline import build  # noqa: E402
+from bullet import client  # noqa: E402,F401  (the shared fixture)
 
 DEMOS = sorted((Path(__file__).resolve().parents[2] / "demos").glob("*.grammar"))
 SEED = 2
@@ -220,14 +220,6 @@ def test_mujoco_doors_swing_their_range_without_touching_their_frame(built):
 
 
 # -- pybullet -----------------------------------------------------------------------------
-
-@pytest.fixture()
-def client():
-    bullet = BulletClient(connection_mode=pybullet.DIRECT)
-    bullet.setGravity(0, 0, -9.81)
-    yield bullet
-    bullet.disconnect()
-
 
 def _load(client, out, loader):
     if loader == "urdf":

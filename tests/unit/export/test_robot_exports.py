@@ -10,14 +10,14 @@ import os
 import xml.etree.ElementTree as ET
 
 import numpy as np
-import pybullet
 import pytest
 import trimesh
-from pybullet_utils.bullet_client import BulletClient
 
 from cga.errors import ExportError
 from cga.export.sdf import export_sdf
 from cga.export.urdf import export_urdf
+
+from bullet import client  # noqa: F401  (the shared fixture)
 from cga.scene import SceneNode
 from items import item_info
 
@@ -35,14 +35,6 @@ def outputs(small_scene, tmp_path_factory):
     export_urdf(scene, nodes, out, "house")
     export_sdf(scene, nodes, out, "house")
     return out
-
-
-@pytest.fixture()
-def client():
-    bullet = BulletClient(connection_mode=pybullet.DIRECT)
-    bullet.setGravity(0, 0, -9.81)
-    yield bullet
-    bullet.disconnect()
 
 
 def _furniture(nodes):
