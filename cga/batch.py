@@ -200,6 +200,9 @@ def run_batch(grammar: str | Path, *, count: int, out_dir: str | Path, jobs: int
         raise UsageError(f"--jobs must be at least 1, got {jobs}")
     if seed_start < 0:
         raise UsageError(f"--seed-start must be a whole number ≥ 0, got {seed_start}")
+    from .export import check_formats
+
+    check_formats((build_options or {}).get("formats", ()))
     grammar = str(Path(grammar).resolve())
     if not Path(grammar).is_file():
         from .errors import ResourceNotFoundError

@@ -84,18 +84,9 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
                          f"got {robot_radius!r}")
     check_max_depth(max_depth)
     if formats:
-        from .export import EXPORTERS
+        from .export import check_formats
 
-        unknown = [f for f in formats if f not in EXPORTERS]
-        if unknown:
-            raise UsageError(f"unknown export format{'s' * (len(unknown) > 1)} "
-                             f"{', '.join(unknown)}; available: {', '.join(EXPORTERS)}")
-        from .export import missing_packages
-
-        missing = missing_packages(formats)
-        if missing:
-            raise UsageError(f"--export {','.join(formats)} needs {' and '.join(missing)}, "
-                             f"which is not installed: pip install 'cga[robot]'")
+        check_formats(formats)
 
 
 def run_checks(scene: Scene, *, robot_radius: float = 0.25) -> None:

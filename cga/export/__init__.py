@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
+from cga.errors import UsageError
 from cga.scene import Scene, SceneNode
 
 from .glb import export_glb
@@ -26,7 +27,7 @@ from .usd import export_usd
 from .view import export_view
 
 __all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS", "BATCH_FORMATS", "OPTIONAL_MODULES",
-           "missing_packages"]
+           "check_formats", "missing_packages"]
 
 Exporter = Callable[[Scene, Sequence[SceneNode], Path, str], list[Path]]
 """``export_x(scene, nodes, out_dir, name) -> written paths``."""
@@ -65,3 +66,22 @@ def missing_packages(formats: Sequence[str]) -> list[str]:
         package for fmt in formats if fmt in OPTIONAL_MODULES
         for module, package in [OPTIONAL_MODULES[fmt]]
         if importlib.util.find_spec(module) is None))
+
+
+def check_formats(formats: Sequence[str]) -> None:
+    """Refuse unknown formats and formats whose optional package is not installed.
+
+    Raises
+    ------
+    UsageError
+        Naming the unknown formats and the ones available, or the missing packages and
+        the extra that installs them.
+    """
+    unknown = [f for f in formats if f not in EXPORTERS]
+    if unknown:
+        raise UsageError(f"unknown export format{'s' * (len(unknown) > 1)} "
+                         f"{', '.join(unknown)}; available: {', '.join(EXPORTERS)}")
+    missing = missing_packages(formats)
+    if missing:
+        raise UsageError(f"--export {','.join(formats)} needs {' and '.join(missing)}, "
+                         f"which is not installed: pip install 'cga[robot]'")

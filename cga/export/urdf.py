@@ -31,7 +31,7 @@ from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
 from .bodies import LinkFiles, numbers_text, write_link_meshes
-from .world import ROOT, Joint, Link, World, robot_world
+from .world import ROOT, ItemJoints, Joint, Link, World, robot_world
 
 __all__ = ["URDF_DIR", "world_as_urdf", "export_urdf"]
 
@@ -142,8 +142,13 @@ def _pose_entry(link: Link) -> dict[str, object]:
     }
 
 
-def export_urdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: str) -> list[Path]:
+def export_urdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: str, *,
+                items: ItemJoints = "fixed") -> list[Path]:
     """Write ``<name>.urdf``, the per-body URDFs, their meshes and ``<name>.urdf.json``.
+
+    ``items`` is how the items hang in ``<name>.urdf``: ``"fixed"`` (``cga build``'s
+    choice: one rigid tree, what ``robot_state_publisher`` and pybullet handle) or
+    ``"floating"`` (URDF floating joints, for importers that make them free bodies).
 
     Raises
     ------
@@ -151,7 +156,7 @@ def export_urdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: s
         See :func:`cga.export.world.robot_world`.
     """
     out = Path(out_dir)
-    world = robot_world(scene, nodes, items="fixed")
+    world = robot_world(scene, nodes, items=items)
     files = write_link_meshes(world, out, name)
     written = [atomic_write(out / f"{name}.urdf", world_as_urdf(world, files))]
     building = [link.name for link in world.links if link.role != "item"]

@@ -216,8 +216,10 @@ def world_as_stage(world: World, *, up: Literal["Z", "Y"] = "Z") -> Any:
     return writer.stage
 
 
-def export_usd(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: str) -> list[Path]:
-    """Write ``<name>.usdc`` (binary USD, Z up).
+def export_usd(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: str, *,
+               up: Literal["Z", "Y"] = "Z") -> list[Path]:
+    """Write ``<name>.usdc`` (binary USD; ``up`` axis ``Z``, ``cga build``'s choice, or
+    ``Y``).
 
     Raises
     ------
@@ -225,7 +227,7 @@ def export_usd(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: st
         ``usd-core`` is not installed, or see :func:`cga.export.world.robot_world`.
     """
     _pxr()
-    stage = world_as_stage(robot_world(scene, nodes))
+    stage = world_as_stage(robot_world(scene, nodes), up=up)
     with tempfile.TemporaryDirectory(prefix="cga-usd-") as folder:
         temporary = Path(folder) / f"{name}.usdc"
         if not stage.GetRootLayer().Export(os.fspath(temporary)):

@@ -230,3 +230,37 @@ def test_non_convex_user_model_gets_the_same_convex_pieces_as_the_physics_check(
     pieces = collision_parts(item)
     assert len(pieces) >= 2 and all(p.is_convex for p in pieces)
     assert len(body.colliders) == len(pieces)
+
+
+def test_one_file_urdf_items_fixed_or_floating(small_scene, tmp_path):
+    scene, nodes = small_scene
+    for items in ("fixed", "floating"):
+        export_urdf(scene, nodes, tmp_path / items, "house", items=items)
+        root = ET.parse(tmp_path / items / "house.urdf").getroot()
+        kinds = {j.find("child").get("link"): j.get("type") for j in root.iter("joint")}
+        movable = [n for n in nodes if n.kind == "furniture" and not n.static]
+        for node in movable:
+            assert kinds[node.path.replace("/furniture/", "/").replace("/", "_")] == items
+        assert {k for name, k in kinds.items() if name.endswith("_structure")} == {"fixed"}
+        assert {r.get("name") for r in root.iter("robot")} == {"house"}
+
+
+@pytest.mark.parametrize("up", ["Z", "Y"])
+def test_usd_stage_up_axis_puts_the_building_where_the_scene_has_it(small_scene, up):
+    pytest.importorskip("pxr")
+    from pxr import Usd, UsdGeom
+
+    from cga.export.usd import world_as_stage
+    from cga.export.world import robot_world
+
+    scene, nodes = small_scene
+    stage = world_as_stage(robot_world(scene, nodes), up=up)
+    assert UsdGeom.GetStageUpAxis(stage) == up
+    cache = UsdGeom.BBoxCache(Usd.TimeCode.Default(), [UsdGeom.Tokens.default_])
+    box = cache.ComputeWorldBound(stage.GetPrimAtPath("/World/building")).ComputeAlignedRange()
+    lo, hi = np.array(box.GetMin()), np.array(box.GetMax())
+    world = np.array([n.mesh.bounds for n in nodes])
+    expected = np.array([world[:, 0].min(axis=0), world[:, 1].max(axis=0)])  # y up
+    if up == "Z":
+        expected = np.array([_ros_box(trimesh.creation.box(bounds=expected))])[0]
+    assert np.allclose([lo, hi], expected, atol=1e-4)
