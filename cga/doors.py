@@ -20,7 +20,8 @@ by up to 180° about the hinge never sweeps through the jamb or the wall, and th
 quarter circle it sweeps while opening to :data:`~cga.model.DOOR_OPEN_ANGLE` is the
 swing the plans draw and the furniture keeps free
 (:func:`cga.operations.furniture.clearance.door_keepouts` centres it on the same point).
-The leaf is :data:`SIDE_GAP` narrower than the opening at each side, so its far edge,
+The leaf is :data:`SIDE_GAP` narrower than the opening at each side (at most an eighth of
+a tiny opening), so its far edge,
 whose back corner sweeps out by ``√(w² + t²) − w`` (under 1 mm for a 0.9 m × 0.04 m leaf),
 never touches the latch jamb.
 
@@ -87,6 +88,8 @@ class DoorLeaf:
     size: tuple[float, float, float]
     lower: float = 0.0
     upper: float = DOOR_OPEN_ANGLE
+    gaps: tuple[float, float] = (SIDE_GAP, BOTTOM_GAP)
+    """(side, bottom): where the box starts from the hinge jamb and from the floor."""
 
     @property
     def name(self) -> str:
@@ -99,7 +102,8 @@ class DoorLeaf:
         # The swing side is the frame's −z when the axis is +y (and +z when it is −y):
         # the leaf lies behind the swing face, on the other side.
         side = 1.0 if self.axis[1] > 0 else -1.0
-        centre = np.array([SIDE_GAP + width / 2, BOTTOM_GAP + height / 2, side * thickness / 2])
+        centre = np.array([self.gaps[0] + width / 2, self.gaps[1] + height / 2,
+                           side * thickness / 2])
         return centre, np.array(self.size, dtype=float)
 
     def frame(self, angle: float | None = None) -> np.ndarray:
@@ -147,8 +151,11 @@ def door_leaf(plan: FloorPlan, door: Door, thickness: float) -> DoorLeaf:
     """
     from cga.operations.furniture.clearance import face_offset
 
-    width = door.width - 2 * SIDE_GAP
-    height = door.height - BOTTOM_GAP - TOP_GAP
+    # gaps no larger than an eighth of the opening, so a tiny door still has a leaf
+    side = min(SIDE_GAP, door.width / 8)
+    bottom, top = min(BOTTOM_GAP, door.height / 8), min(TOP_GAP, door.height / 8)
+    width = door.width - 2 * side
+    height = door.height - bottom - top
     if not (width > 0 and height > 0 and thickness > 0):
         raise ValueError(f"door {door.id} on floor {plan.index}: a {door.width:.3f} m × "
                          f"{door.height:.3f} m opening takes no {thickness:.3f} m leaf")
@@ -165,7 +172,7 @@ def door_leaf(plan: FloorPlan, door: Door, thickness: float) -> DoorLeaf:
         state=door.state, angle=float(door.angle),
         hinge=(float(hinge[0]), float(plan.floor_y), float(hinge[1])),
         along=(float(along[0]), float(along[1])), axis=(0.0, axis_y, 0.0),
-        size=(float(width), float(height), float(thickness)))
+        size=(float(width), float(height), float(thickness)), gaps=(side, bottom))
 
 
 def leaf_model_matrix(leaf: DoorLeaf, bounds: np.ndarray, slab_z: tuple[float, float]
