@@ -212,13 +212,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv:
         Arguments without the program name (default: ``sys.argv[1:]``).
     """
+    from .interrupts import Terminated, handle_termination
+
     args = _parser().parse_args(argv)
     try:
-        return args.run(args)
+        with handle_termination():
+            return args.run(args)
     except CGAError as error:
         print(_bounded(str(error)), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130
+    except Terminated as signal:
+        print(f"terminated ({signal.name})", file=sys.stderr)
+        return signal.exit_status
 

@@ -5,14 +5,14 @@ Two helpers (DESIGN §10, "files are written atomically"):
 * :func:`atomic_write` writes one file: the bytes go to a temporary file in the same
   folder, are flushed to disk, and the temporary file is renamed over the target with
   :func:`os.replace` (atomic on POSIX and Windows when both are on one file system).
-* :func:`atomic_output_dir` stages a whole build: exporters write into a temporary
-  folder beside the target; only when every exporter has succeeded are the files moved
-  into the target, each with :func:`os.replace`. If anything fails, the staging folder
-  is removed and the target is left exactly as it was.
+* :func:`atomic_output_dir` stages a whole build: exporters write into a locked
+  staging folder inside the target; only when every exporter has succeeded are the
+  files moved into the target, each with :func:`os.replace`. If anything fails, the
+  staging folder is removed and the target is left exactly as it was.
 
 The target folder itself is never deleted or swapped wholesale (``--out .`` must not
-wipe a user's working directory); files from an earlier build that this build did not
-write can be removed by naming a glob pattern (``replace_matching``).
+wipe a user's working directory), and a build replaces or removes only files that it
+or an earlier build of the same name wrote (:mod:`cga.output_record`).
 """
 
 from __future__ import annotations
@@ -22,10 +22,21 @@ import contextvars
 import os
 import shutil
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-__all__ = ["atomic_write", "atomic_output_dir"]
+from .errors import ExportError
+
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None  # type: ignore[assignment]
+
+__all__ = ["atomic_write", "atomic_output_dir", "remove_stale_staging", "OutputConflictError",
+           "STAGING_PREFIX"]
+
+STAGING_PREFIX = ".cga-staging-"
+"""Names of staging folders inside an output folder (``.cga-staging-<pid>-<random>``)."""
 
 _staging_folder: contextvars.ContextVar[Path | None] = contextvars.ContextVar(
     "cga_staging_folder", default=None)
@@ -93,21 +104,86 @@ def _flush(files: list[Path]) -> None:
             os.fsync(handle.fileno())
 
 
+def _lock_exclusive(fd: int) -> bool:
+    """Take an exclusive advisory lock on an open file or folder without waiting.
+
+    The kernel drops the lock when the process dies, however it dies (SIGKILL too), so
+    a lock that can be taken marks a staging folder nobody is using any more."""
+    if fcntl is None:  # no advisory locks (Windows): never treat a folder as stale
+        return True
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return False
+    return True
+
+
+def remove_stale_staging(folder: Path) -> list[Path]:
+    """Remove staging folders in ``folder`` left by builds that were killed.
+
+    A live build holds a lock on its staging folder (:func:`_staging_dir`); a folder
+    whose lock can be taken belongs to a dead process. Returns the folders removed.
+    """
+    if fcntl is None:
+        return []
+    removed = []
+    for candidate in sorted(folder.glob(f"{STAGING_PREFIX}*")):
+        if candidate.is_symlink() or not candidate.is_dir():
+            continue
+        try:
+            fd = os.open(candidate, os.O_RDONLY | os.O_DIRECTORY)
+        except OSError:
+            continue
+        try:
+            if _lock_exclusive(fd):
+                shutil.rmtree(candidate, ignore_errors=True)
+                removed.append(candidate)
+        finally:
+            os.close(fd)
+    return removed
+
+
 @contextlib.contextmanager
-def atomic_output_dir(target: str | os.PathLike[str], *,
-                      replace_matching: str | None = None) -> Iterator[Path]:
-    """Stage output files in a temporary folder and move them into ``target`` on success.
+def _staging_dir(final: Path) -> Iterator[Path]:
+    """A fresh staging folder inside ``final``, locked for as long as it is in use and
+    removed afterwards (also on KeyboardInterrupt and :class:`~cga.interrupts.Terminated`)."""
+    for _attempt in range(3):
+        staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-", dir=final))
+        fd = os.open(staging, os.O_RDONLY | os.O_DIRECTORY)
+        # another build's stale-staging sweep may have removed it before the lock was taken
+        if _lock_exclusive(fd) and os.fstat(fd).st_nlink > 0:
+            break
+        os.close(fd)
+    else:
+        raise OSError(f"cannot create a staging folder in {final}")
+    try:
+        yield staging
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+        os.close(fd)
+
+
+class OutputConflictError(ExportError):
+    """The build would replace a file it did not write (or that changed since)."""
+
+
+@contextlib.contextmanager
+def atomic_output_dir(target: str | os.PathLike[str], *, owner: str | None = None,
+                      protect: Iterable[str | os.PathLike[str]] = ()) -> Iterator[Path]:
+    """Stage output files in a folder inside ``target``; move them in on success.
 
     Parameters
     ----------
     target:
         The folder that receives the files (created if missing).
-    replace_matching:
-        Optional file-name glob (e.g. ``"house.*"``). After the new files are in place,
-        files matching it that this build did not write are deleted from ``target`` and
-        from every subfolder this build wrote into (``urdf/``, ``meshes/``), so a
-        rebuild with fewer floors or items leaves no stale ``house.floor3.svg`` behind.
-        Other folders are never touched. Nothing is deleted if the build fails.
+    owner:
+        The build name. With it, the folder keeps a record of the files this build name
+        wrote (:class:`~cga.output_record.OutputRecord`): a file that exists but is not
+        recorded (or changed since) is never replaced, the build fails with
+        :class:`OutputConflictError` before anything moves; recorded files this build
+        does not write again are removed. Without it files are only added or replaced.
+    protect:
+        Inputs (the grammar, a lot file) that must never be replaced or removed.
 
     Yields
     ------
@@ -117,35 +193,60 @@ def atomic_output_dir(target: str | os.PathLike[str], *,
 
     Notes
     -----
-    On an exception inside the ``with`` block the staging folder is removed and the
-    exception propagates; ``target`` is untouched. On success each staged file is
-    moved with :func:`os.replace`, so every file in ``target`` is always complete.
+    Staging inside ``target`` keeps every rename on one file system and needs no write
+    permission on ``target``'s parent (issue 19, defect 6). On an exception inside the
+    ``with`` block (Ctrl-C and SIGTERM/SIGHUP under :func:`cga.interrupts.handle_termination`
+    included) the staging folder is removed and ``target`` is untouched; the commit
+    itself runs with those signals deferred. Staging left by a killed build (SIGKILL) is
+    removed by the next build into the same folder (:func:`remove_stale_staging`).
     """
+    from . import interrupts
+
     final = Path(target)
-    final.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{final.name}.", suffix=".staging", dir=final.parent))
-    token = _staging_folder.set(staging.resolve())
-    try:
-        yield staging
-        _staging_folder.reset(token)
-        token = None
+    final.mkdir(parents=True, exist_ok=True)
+    remove_stale_staging(final)
+    protected = [Path(p) for p in protect]
+    with _staging_dir(final) as staging:
+        token = _staging_folder.set(staging.resolve())
+        try:
+            yield staging
+        finally:
+            _staging_folder.reset(token)
         staged = sorted(p for p in staging.rglob("*") if p.is_file())
         _flush(staged)
-        final.mkdir(parents=True, exist_ok=True)
-        written: set[Path] = set()
-        for source in staged:
-            relative = source.relative_to(staging)
-            destination = final / relative
-            destination.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(source, destination)
-            written.add(relative)
-        if replace_matching is not None:
-            folders = {final} | {final / relative.parent for relative in written}
-            for folder in sorted(folders):
-                for stale in sorted(folder.glob(replace_matching)):
-                    if stale.is_file() and stale.relative_to(final) not in written:
-                        stale.unlink()
-    finally:
-        if token is not None:
-            _staging_folder.reset(token)
-        shutil.rmtree(staging, ignore_errors=True)
+        with interrupts.deferred():
+            _commit(final, staging, staged, owner, protected)
+
+
+def _commit(final: Path, staging: Path, staged: list[Path], owner: str | None,
+            protect: list[Path]) -> None:
+    """Move staged files into ``final``; with an owner, replace and remove only its files."""
+    from .output_record import OutputRecord, file_digest
+
+    relatives = [source.relative_to(staging).as_posix() for source in staged]
+    record = None
+    if owner is not None:
+        record = OutputRecord.load(final, owner)
+        conflicts = [name for name in relatives
+                     if os.path.lexists(final / name) and not record.owns(name, protect)]
+        if conflicts:
+            shown = ", ".join(str(final / name) for name in conflicts[:3])
+            more = f" and {len(conflicts) - 3} more" if len(conflicts) > 3 else ""
+            raise OutputConflictError(
+                f"cannot write into {final}: {shown}{more} already exist"
+                f"{'s' if len(conflicts) == 1 else ''} and no earlier build of '{owner}' wrote "
+                f"{'it' if len(conflicts) == 1 else 'them'} (or "
+                f"{'it was' if len(conflicts) == 1 else 'they were'} changed since); a build "
+                f"replaces only its own files: move "
+                f"{'it' if len(conflicts) == 1 else 'them'} away or choose another --out")
+        written = {name: file_digest(source) for name, source in zip(relatives, staged)}
+        # the record lists every file that may be in place before any moves, so a
+        # build killed half-way still owns what it wrote
+        record.save({**record.files, **written})
+    for name, source in zip(relatives, staged):
+        destination = final / name
+        destination.parent.mkdir(parents=True, exist_ok=True)
+        os.replace(source, destination)
+    if record is not None:
+        record.remove_unless(written, protect)
+        record.save(written)

@@ -113,17 +113,21 @@ def _run_checks(scene: Scene, robot_radius: float, progress: _Progress) -> None:
     scene.checks["navigability"] = {**reach.to_dict(), "summary": reach.summary()}
 
 
-def export_scene(scene: Scene, out_dir: str | Path, formats: Sequence[str]) -> list[Path]:
+def export_scene(scene: Scene, out_dir: str | Path, formats: Sequence[str], *,
+                 protect: Sequence[str | Path] = ()) -> list[Path]:
     """Write ``formats`` of ``scene.nodes`` into ``out_dir`` all-or-nothing; returns the
     written files.
 
-    Files named ``<scene name>.*`` left from an earlier build and not rewritten now are
-    removed, so the folder describes this build only.
+    Files an earlier build of the same name wrote and this one does not are removed, so
+    the folder describes this build only; no other file is replaced or removed
+    (:mod:`cga.output_record`). ``protect`` lists inputs that must survive whatever
+    happens (the grammar itself is always protected).
 
     Raises
     ------
     ExportError
-        The folder cannot be created or written (a file of that name, no permission).
+        The folder cannot be created or written (a file of that name, no permission),
+        or it holds a file of an output's name that no build of this name wrote.
     """
     from .export import EXPORTERS
     from .fsutil import atomic_output_dir
@@ -131,13 +135,26 @@ def export_scene(scene: Scene, out_dir: str | Path, formats: Sequence[str]) -> l
     target = Path(out_dir)
     written: list[Path] = []
     try:
-        with atomic_output_dir(target, replace_matching=f"{scene.name}.*") as staging:
+        inputs = [*protect, *([scene.source] if scene.source else [])]
+        with atomic_output_dir(target, owner=scene.name, protect=inputs) as staging:
             for fmt in dict.fromkeys(formats):
                 written.extend(EXPORTERS[fmt](scene, scene.nodes, staging, scene.name))
     except OSError as error:
         raise ExportError(f"cannot write the output folder {target}: {error.strerror or error}"
                           f"{f' ({error.filename})' if error.filename else ''}") from None
     return [target / path.relative_to(staging) for path in written]
+
+
+def _input_files(*names: str | None) -> list[Path]:
+    """The options that name existing files (a ``--lot`` may be a GeoJSON file or a size)."""
+    files = []
+    for name in names:
+        try:
+            if name and Path(name).is_file():
+                files.append(Path(name))
+        except (OSError, ValueError):  # e.g. a polygon text longer than a file name may be
+            continue
+    return files
 
 
 def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None = None,
@@ -205,6 +222,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         with _Progress(timings, quiet) as progress:
             with progress.stage("parse", f"parsing {path.name}…"):
                 grammar = parse(text, str(path))
+            lot_text = lot if isinstance(lot, str) else None
             if lot is not None:
                 from .lot import parse_lot, validate_lot
 
@@ -233,7 +251,8 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                                       [c.get("summary", "") for c in failed])
             if formats:
                 with progress.stage("export", "writing files…"):
-                    export_scene(scene, out_dir or default_out_dir(scene.name), formats)
+                    export_scene(scene, out_dir or default_out_dir(scene.name), formats,
+                                 protect=_input_files(lot_text))
     except SourceError as error:
         if error.span is not None and error.span.file == str(path):
             error.with_source(text)

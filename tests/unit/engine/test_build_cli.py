@@ -39,7 +39,8 @@ def test_build_writes_files_and_times_stages(grammar_file, tmp_path):
     scene = build(grammar_file, seed=2, out_dir=out, formats=("glb", "json"), quiet=True)
     assert scene.name == "block" and scene.seed == 2 and scene.source == grammar_file
     assert [t.symbol for t in scene.terminals] == ["Facade"] * 4 + ["Upper"]
-    assert sorted(p.name for p in out.iterdir()) == ["block.glb", "block.scene.json"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        ".cga-block.files.json", "block.glb", "block.scene.json"]
     assert {"parse", "derive", "extrude", "repeated_split", "component_split", "meshing",
             "export"} <= set(scene.timings)
     assert "physics" not in scene.timings  # no floors: checks do not run
@@ -225,3 +226,32 @@ def test_cli_batch_builds_each_seed_and_resumes(grammar_file, tmp_path, capsys):
     assert main(["batch", str(grammar_file), "-n", "3", "--out", str(out), "--json"]) == 0
     again = json.loads(capsys.readouterr().out)
     assert again["houses"] == 3 and again["built_now"] == 1
+
+
+def test_build_into_the_grammars_own_folder_keeps_the_grammar_and_notes(tmp_path, monkeypatch,
+                                                                         capsys):
+    """Issue 19, defect 1: `--out .` beside the grammar deleted `house.grammar` and
+    `house.notes.txt`; a `*` in the grammar name deleted every file with a dot."""
+    monkeypatch.chdir(tmp_path)
+    user_files = {"house.grammar": GRAMMAR, "house.notes.txt": "notes", "h*.grammar": GRAMMAR,
+                  "plan.v2.txt": "v2", "house.floor9.svg": "a user's drawing"}
+    for name, text in user_files.items():
+        (tmp_path / name).write_text(text)
+    for grammar in ("house.grammar", "h*.grammar", "house.grammar", "h*.grammar"):
+        assert main(["build", grammar, "--out", ".", "--no-physics", "--quiet"]) == 0
+    for name, text in user_files.items():
+        assert (tmp_path / name).read_text() == text
+    outputs = {p.name for p in tmp_path.iterdir()} - set(user_files)
+    assert outputs == {".cga-house.files.json", ".cga-h*.files.json", "house.glb",
+                       "house.scene.json", "h*.glb", "h*.scene.json"}
+
+
+def test_build_refuses_to_replace_a_file_it_did_not_write(grammar_file, tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "block.glb").write_text("someone else's model")
+    assert main(["build", str(grammar_file), "--out", str(out), "--quiet"]) == 2
+    message = capsys.readouterr().err
+    assert "block.glb already exists" in message and "Traceback" not in message
+    assert (out / "block.glb").read_text() == "someone else's model"
+    assert sorted(p.name for p in out.iterdir()) == ["block.glb"]
