@@ -12,6 +12,7 @@ command is one more entry.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from collections.abc import Callable, Sequence
 
@@ -108,15 +109,32 @@ def _run_check(args: argparse.Namespace) -> int:
     return 0
 
 
+def _whole_number(text: str) -> int:
+    """An integer option that may be written as ``1000`` or ``1e6`` (but not ``1.5``)."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not value.is_integer():
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}")
+    return int(value)
+
+
 def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
-    parser.add_argument("-n", "--count", type=int, required=True, metavar="N",
-                        help="number of seeds to build")
+    parser.add_argument("-n", "--count", type=_whole_number, required=True, metavar="N",
+                        help="number of seeds to build (1000 or 1e6)")
     _add_allow_path(parser)
-    parser.add_argument("--seed-start", type=int, default=0, metavar="S",
+    parser.add_argument("--seed-start", type=_whole_number, default=0, metavar="S",
                         help="first seed (default 0)")
     parser.add_argument("--jobs", type=int, default=1, metavar="J",
-                        help="worker processes (default 1)")
+                        help="worker processes (default 1, at most 4 per core)")
+    parser.add_argument("--time-limit", type=float, metavar="SECONDS",
+                        help="stop a build that takes longer and record its seed as failed")
     parser.add_argument("--out", metavar="DIR",
                         help="output folder (default out/<grammar name>-batch)")
     parser.add_argument("--no-physics", action="store_true",
@@ -134,14 +152,14 @@ def _run_batch(args: argparse.Namespace) -> int:
     import json
     from pathlib import Path
 
-    from .batch import run_batch
+    from .batch import MANIFEST, run_batch
     from .export import BATCH_FORMATS
 
     out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.grammar).stem}-batch"
     options = {"physics": not args.no_physics, "allow_paths": args.allow_paths,
                "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export]))}
     kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
-                  build_options=options)
+                  time_limit=args.time_limit, build_options=options)
     if args.quiet or args.json:
         report = run_batch(args.grammar, **kwargs)
     else:
@@ -158,11 +176,20 @@ def _run_batch(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({**data, "out_dir": str(out_dir)}, indent=2))
     elif not args.quiet:
-        print(f"{data['houses']} builds ({data['built_now']} now) in {out_dir}: "
-              f"{data['validity_rate']:.1%} valid, {data['placement_rate']:.1%} of items placed, "
-              f"{data['mean_seconds']:.2f} s mean (p95 {data['p95_seconds']:.2f} s), "
-              f"{data['errors']} errors")
-    return 0
+        print(f"{data['seeds']} seeds in {out_dir}: {data['houses']} built "
+              f"({data['built_now']} now, {data['skipped']} skipped: built before), "
+              f"{data['failed']} failed; {data['validity_rate']:.1%} valid, "
+              f"{data['placement_rate']:.1%} of items placed, {data['mean_seconds']:.2f} s mean "
+              f"(p95 {data['p95_seconds']:.2f} s)")
+    if not report.failed:
+        return 0
+    for failure in data["failed_seeds"]:
+        print(f"seed {failure['seed']} failed: {failure['error']}", file=sys.stderr)
+    more = len(report.failed) - len(data["failed_seeds"])
+    print(f"{len(report.failed)} seed{'s' * (len(report.failed) != 1)} failed"
+          f"{f' ({more} not listed)' if more else ''}: see {out_dir / MANIFEST} and "
+          f"seed_*/error.txt; a rerun builds them again", file=sys.stderr)
+    return 2
 
 
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None],
@@ -179,7 +206,8 @@ def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="cga", description="Shape-grammar building generator.",
         epilog="Exit status: 0 success, 2 an error in the input (grammar, rule table, "
-               "option, missing file).")
+               "option, missing file) or, for batch, any seed that failed; 128 + N when "
+               "stopped by signal N (130 for Ctrl-C).")
     parser.add_argument("--version", action="version", version=f"cga {__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for name, (help_text, add_arguments, run) in COMMANDS.items():

@@ -32,8 +32,8 @@ try:
 except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
 
-__all__ = ["atomic_write", "atomic_output_dir", "remove_stale_staging", "OutputConflictError",
-           "STAGING_PREFIX"]
+__all__ = ["atomic_write", "atomic_output_dir", "remove_stale_staging", "lock_exclusive",
+           "OutputConflictError", "STAGING_PREFIX"]
 
 STAGING_PREFIX = ".cga-staging-"
 """Names of staging folders inside an output folder (``.cga-staging-<pid>-<random>``)."""
@@ -104,7 +104,7 @@ def _flush(files: list[Path]) -> None:
             os.fsync(handle.fileno())
 
 
-def _lock_exclusive(fd: int) -> bool:
+def lock_exclusive(fd: int) -> bool:
     """Take an exclusive advisory lock on an open file or folder without waiting.
 
     The kernel drops the lock when the process dies, however it dies (SIGKILL too), so
@@ -135,7 +135,7 @@ def remove_stale_staging(folder: Path) -> list[Path]:
         except OSError:
             continue
         try:
-            if _lock_exclusive(fd):
+            if lock_exclusive(fd):
                 shutil.rmtree(candidate, ignore_errors=True)
                 removed.append(candidate)
         finally:
@@ -151,7 +151,7 @@ def _staging_dir(final: Path) -> Iterator[Path]:
         staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-", dir=final))
         fd = os.open(staging, os.O_RDONLY | os.O_DIRECTORY)
         # another build's stale-staging sweep may have removed it before the lock was taken
-        if _lock_exclusive(fd) and os.fstat(fd).st_nlink > 0:
+        if lock_exclusive(fd) and os.fstat(fd).st_nlink > 0:
             break
         os.close(fd)
     else:

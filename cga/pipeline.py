@@ -24,7 +24,8 @@ from .errors import ExportError, NoSolutionError, SourceError, UsageError
 from .evaluator import DEFAULT_MAX_DEPTH, Evaluator, check_max_depth
 from .scene import Scene
 
-__all__ = ["MAX_ROBOT_RADIUS", "STAGES", "build", "default_out_dir", "run_checks", "export_scene"]
+__all__ = ["MAX_ROBOT_RADIUS", "STAGES", "build", "check_grammar", "default_out_dir", "run_checks",
+           "export_scene"]
 
 STAGES = ("parse", "derive", "meshing", "physics", "navigability", "export")
 """Pipeline stages as they appear in ``Scene.timings`` (operation timings are the other keys)."""
@@ -87,6 +88,23 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
         from .export import check_formats
 
         check_formats(formats)
+
+
+def check_grammar(grammar_path: str | Path, *, seed: int = 0, units: float | None = None,
+                  robot_radius: float = 0.25, formats: Sequence[str] = ("glb",),
+                  max_depth: int = DEFAULT_MAX_DEPTH, **_other_build_options: Any) -> None:
+    """Raise what :func:`build` would raise for every seed before deriving anything: a
+    missing or unreadable grammar, a syntax error, a bad option (``cga batch`` checks
+    this once instead of failing each seed the same way).
+
+    Takes :func:`build`'s keywords; those that need a derivation to check are ignored.
+    """
+    from .parser import parse, read_grammar
+
+    path = Path(grammar_path)
+    text = read_grammar(path)
+    _check_options(seed, units, robot_radius, formats, max_depth)
+    parse(text, str(path))
 
 
 def run_checks(scene: Scene, *, robot_radius: float = 0.25) -> None:

@@ -221,7 +221,8 @@ def test_cli_batch_builds_each_seed_and_resumes(grammar_file, tmp_path, capsys):
     assert main(["batch", str(grammar_file), "-n", "2", "--out", str(out), "--json"]) == 0
     first = json.loads(capsys.readouterr().out)
     assert first["houses"] == 2 and first["built_now"] == 2 and first["errors"] == 0
-    assert sorted(p.name for p in out.iterdir()) == ["manifest.jsonl", "seed_000000", "seed_000001"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        ".cga-batch.lock", "manifest.jsonl", "seed_000000", "seed_000001"]
     assert (out / "seed_000001" / "block.glb").is_file()
     assert main(["batch", str(grammar_file), "-n", "3", "--out", str(out), "--json"]) == 0
     again = json.loads(capsys.readouterr().out)
