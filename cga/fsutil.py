@@ -221,7 +221,7 @@ def atomic_output_dir(target: str | os.PathLike[str], *, owner: str | None = Non
 def _commit(final: Path, staging: Path, staged: list[Path], owner: str | None,
             protect: list[Path]) -> None:
     """Move staged files into ``final``; with an owner, replace and remove only its files."""
-    from .output_record import OutputRecord, file_digest
+    from .output_record import OutputRecord
 
     relatives = [source.relative_to(staging).as_posix() for source in staged]
     record = None
@@ -230,23 +230,24 @@ def _commit(final: Path, staging: Path, staged: list[Path], owner: str | None,
         conflicts = [name for name in relatives
                      if os.path.lexists(final / name) and not record.owns(name, protect)]
         if conflicts:
-            shown = ", ".join(str(final / name) for name in conflicts[:3])
-            more = f" and {len(conflicts) - 3} more" if len(conflicts) > 3 else ""
-            raise OutputConflictError(
-                f"cannot write into {final}: {shown}{more} already exist"
-                f"{'s' if len(conflicts) == 1 else ''} and no earlier build of '{owner}' wrote "
-                f"{'it' if len(conflicts) == 1 else 'them'} (or "
-                f"{'it was' if len(conflicts) == 1 else 'they were'} changed since); a build "
-                f"replaces only its own files: move "
-                f"{'it' if len(conflicts) == 1 else 'them'} away or choose another --out")
-        written = {name: file_digest(source) for name, source in zip(relatives, staged)}
-        # the record lists every file that may be in place before any moves, so a
-        # build killed half-way still owns what it wrote
-        record.save({**record.files, **written})
+            raise OutputConflictError(_conflict_message(final, owner, conflicts))
+        # list the new files before they move in: a build stopped while moving still
+        # owns what it moved (staged files are older than the record)
+        record.save(record.files | set(relatives))
     for name, source in zip(relatives, staged):
         destination = final / name
         destination.parent.mkdir(parents=True, exist_ok=True)
         os.replace(source, destination)
     if record is not None:
-        record.remove_unless(written, protect)
-        record.save(written)
+        record.remove_unless(relatives, protect)
+        record.save(relatives)
+
+
+def _conflict_message(final: Path, owner: str, conflicts: list[str]) -> str:
+    one = len(conflicts) == 1
+    shown = ", ".join(str(final / name) for name in conflicts[:3])
+    more = f" and {len(conflicts) - 3} more" if len(conflicts) > 3 else ""
+    return (f"cannot write into {final}: {shown}{more} already exist{'s' * one} and no "
+            f"earlier build of '{owner}' wrote {'it' if one else 'them'} (or "
+            f"{'it was' if one else 'they were'} changed since); a build replaces only its "
+            f"own files: move {'it' if one else 'them'} away or choose another --out")
