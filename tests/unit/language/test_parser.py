@@ -6,10 +6,10 @@ node equality, so they are checked separately where they matter.
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import pytest
+from lark import Lark
 
 from cga import ast
 from cga.errors import ResourceNotFoundError, Span
@@ -503,17 +503,16 @@ THIRTY_LINES = "\n".join(
        "E --> F"])
 
 
-def test_thirty_line_grammar_parses_in_a_few_milliseconds():
+def test_thirty_line_grammar_parses_with_one_parser_per_process(monkeypatch):
+    """How fast is measured in benchmarks/bench_parser.py: a timed assertion here failed
+    on a busy machine (issue 19, defect 8). What makes parsing fast is checked instead:
+    the LALR tables are built once and every parse reuses them."""
     assert len(THIRTY_LINES.split("\n")) >= 30
-    parse(THIRTY_LINES)  # builds the cached parser
-    best = min(_timed(lambda: parse(THIRTY_LINES)) for _ in range(5))
-    assert best < 0.025, f"best of 5 parses took {best * 1000:.1f} ms"
-
-
-def _timed(action) -> float:
-    start = time.perf_counter()
-    action()
-    return time.perf_counter() - start
+    parse(THIRTY_LINES)
+    built = []
+    monkeypatch.setattr(Lark, "open", lambda *a, **k: built.append(a) or pytest.fail("rebuilt"))
+    grammar = parse(THIRTY_LINES)
+    assert len(grammar.rules) == 14 and built == []
 
 
 def test_language_reference_example_parses():
