@@ -403,4 +403,17 @@ def _run(grammar: str, seeds: Iterator[int], out: Path, options: dict[str, Any],
     from .batch_pool import run_pool
 
     yield from run_pool(seeds, work, functools.partial(_failure, out), jobs=jobs,
-                        time_limit=time_limit)
+                        time_limit=time_limit,
+                        warm_up=functools.partial(_warm_up, options.get("physics", True)))
+
+
+def _warm_up(physics: bool) -> None:
+    """Import what a build needs before a worker takes its first seed: a second or two
+    that would otherwise count against the first build's time limit."""
+    import importlib
+
+    modules = ["cga.pipeline", "cga.meshing", "cga.export", "cga.operations"]
+    if physics:
+        modules += ["cga.checks.physics", "cga.checks.navigability"]
+    for name in modules:
+        importlib.import_module(name)

@@ -52,36 +52,40 @@ def _die_with_parent(parent_pid: int) -> None:
         os._exit(0)
 
 
-def _worker_main(connection: Connection, parent_pid: int, build: Build) -> None:
-    """Build the seeds the parent sends until it sends None or goes away."""
+_READY = "ready"
+"""A worker's first message: it has imported what builds need and can start a clock."""
+
+
+def _worker_main(connection: Connection, parent_pid: int, build: Build,
+                 warm_up: Callable[[], None] | None) -> None:
+    """Warm up, say so, then build the seeds the parent sends until it goes away."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
     _die_with_parent(parent_pid)
-    while True:
-        try:
+    if warm_up is not None:
+        warm_up()
+    try:
+        connection.send(_READY)
+        while True:
             seed = connection.recv()
-        except (EOFError, OSError):
-            os._exit(0)
-        if seed is None:
-            return
-        result = build(seed)
-        try:
-            connection.send(result)
-        except OSError:  # the parent is gone; nobody is left to tell
-            os._exit(0)
+            connection.send(build(seed))
+    except (EOFError, OSError):  # the parent is gone; nobody is left to tell
+        os._exit(0)
 
 
 @dataclass
 class _Worker:
     process: Any
     connection: Connection
+    ready: bool = False
     seed: int | None = None
     started: float = 0.0
 
 
 class _Pool:
-    def __init__(self, jobs: int, build: Build):
+    def __init__(self, jobs: int, build: Build, warm_up: Callable[[], None] | None):
         self.context = multiprocessing.get_context("spawn")
         self.build = build
+        self.warm_up = warm_up
         self.workers: list[_Worker] = []
         for _ in range(jobs):
             self.workers.append(self._start())
@@ -89,7 +93,7 @@ class _Pool:
     def _start(self) -> _Worker:
         parent_end, child_end = self.context.Pipe()
         process = self.context.Process(target=_worker_main, daemon=True,
-                                       args=(child_end, os.getpid(), self.build))
+                                       args=(child_end, os.getpid(), self.build, self.warm_up))
         process.start()
         child_end.close()
         return _Worker(process, parent_end)
@@ -119,13 +123,14 @@ def _death(process: Any) -> str:
 
 
 def run_pool(seeds: Iterator[int], build: Build, failed: Failed, *, jobs: int,
-             time_limit: float | None = None) -> Iterator[Any]:
+             time_limit: float | None = None,
+             warm_up: Callable[[], None] | None = None) -> Iterator[Any]:
     """Yield one result per seed, in the order builds finish.
 
     Parameters
     ----------
     seeds:
-        Consumed lazily, one seed per idle worker.
+        Consumed lazily, one seed per ready, idle worker.
     build:
         Runs in a worker (a picklable, module-level callable or partial).
     failed:
@@ -134,15 +139,24 @@ def run_pool(seeds: Iterator[int], build: Build, failed: Failed, *, jobs: int,
     jobs:
         Worker processes.
     time_limit:
-        Seconds one build may take (wall clock), or None for no limit.
+        Seconds one build may take (wall clock from the moment its worker receives
+        the seed), or None for no limit.
+    warm_up:
+        Runs in each worker before it takes seeds (imports), so that start-up time
+        never counts against a build's time limit.
+
+    Raises
+    ------
+    RuntimeError
+        A worker died before it was ready (it could not start at all).
     """
-    pool = _Pool(jobs, build)
+    pool = _Pool(jobs, build, warm_up)
     pending = iter(seeds)
     exhausted = False
     try:
         while True:
             for index, worker in enumerate(pool.workers):
-                if worker.seed is None and not exhausted:
+                if worker.ready and worker.seed is None and not exhausted:
                     seed = next(pending, None)
                     if seed is None:
                         exhausted = True
@@ -150,17 +164,23 @@ def run_pool(seeds: Iterator[int], build: Build, failed: Failed, *, jobs: int,
                     if not worker.process.is_alive():  # died while idle
                         pool.replace(worker)
                         worker = pool.workers[index]
+                        worker.ready = _wait_ready(worker)
                     worker.connection.send(seed)
                     worker.seed, worker.started = seed, time.monotonic()
             busy = [(w, w.seed) for w in pool.workers if w.seed is not None]
-            if not busy:
+            starting = [w for w in pool.workers if not w.ready]
+            if not busy and (exhausted or not starting):
                 return
             timeout = None
-            if time_limit is not None:
+            if time_limit is not None and busy:
                 first = min(w.started for w, _ in busy)
                 timeout = max(0.0, first + time_limit - time.monotonic())
-            ready = wait([w.connection for w, _ in busy] + [w.process.sentinel for w, _ in busy],
+            watched = [w for w, _ in busy] + starting
+            ready = wait([w.connection for w in watched] + [w.process.sentinel for w in watched],
                          timeout)
+            for worker in starting:
+                if worker.connection in ready or worker.process.sentinel in ready:
+                    worker.ready = _wait_ready(worker)
             now = time.monotonic()
             for worker, seed in busy:
                 seconds = now - worker.started
@@ -186,3 +206,15 @@ def run_pool(seeds: Iterator[int], build: Build, failed: Failed, *, jobs: int,
                 yield result
     finally:
         pool.close()
+
+
+def _wait_ready(worker: _Worker) -> bool:
+    """Block until a starting worker says it is ready (True) or raise if it died."""
+    try:
+        if worker.connection.recv() == _READY:
+            return True
+    except (EOFError, OSError):
+        pass
+    worker.process.join()
+    raise RuntimeError(f"a batch worker process could not start "
+                       f"(exit status {worker.process.exitcode})")

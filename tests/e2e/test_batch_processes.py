@@ -143,13 +143,13 @@ def test_sigterm_stops_the_batch_and_removes_unfinished_seeds(batch):
 
 def test_a_build_over_the_time_limit_fails_with_the_reason_and_the_rest_go_on(batch):
     start, grammar, out, _ = batch
-    process = start("-n", "3", "--time-limit", "3", "--json", stall="1")
+    process = start("-n", "3", "--time-limit", "10", "--json", stall="1")
     stdout, stderr = process.communicate(timeout=120)
     assert process.returncode == 2, stderr
     report = json.loads(stdout)
     assert (report["houses"], report["failed"]) == (2, 1)
     assert report["failed_seeds"][0]["seed"] == 1
-    assert "over the time limit of 3 s per build (--time-limit)" in \
+    assert "over the time limit of 10 s per build (--time-limit)" in \
         report["failed_seeds"][0]["error"]
     assert "time limit" in (out / seed_folder(1) / "error.txt").read_text()
     assert "Traceback" not in stderr and "seed 1 failed" in stderr
