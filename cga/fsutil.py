@@ -233,14 +233,14 @@ def _commit(final: Path, staging: Path, staged: list[Path], owner: str | None,
             raise OutputConflictError(_conflict_message(final, owner, conflicts))
         # list the new files before they move in: a build stopped while moving still
         # owns what it moved (staged files are older than the record)
-        record.save(record.files | set(relatives))
+        record.save(record.files | set(relatives), staging)
     for name, source in zip(relatives, staged):
         destination = final / name
         destination.parent.mkdir(parents=True, exist_ok=True)
         os.replace(source, destination)
     if record is not None:
         record.remove_unless(relatives, protect)
-        record.save(relatives)
+        record.save(relatives, staging)
 
 
 def _conflict_message(final: Path, owner: str, conflicts: list[str]) -> str:

@@ -70,15 +70,19 @@ class OutputRecord:
                  and _safe_relative(name) is not None} if isinstance(names, list) else set()
         return cls(Path(folder), owner, files, written_ns)
 
-    def save(self, files: Iterable[str]) -> None:
-        """Replace the record (atomically) with ``files``; call it after they are in place."""
+    def save(self, files: Iterable[str], scratch: Path) -> None:
+        """Replace the record with ``files`` by one rename of a draft written in
+        ``scratch`` (the build's staging folder: a build killed while writing the draft
+        leaves it there, where the next build's sweep removes it)."""
         from .fsutil import atomic_write
 
         self.files = set(files)
         document = {"format": _FORMAT, "version": 1, "name": self.owner,
                     "files": sorted(self.files)}
-        path = atomic_write(record_path(self.folder, self.owner),
-                            json.dumps(document, indent=1, ensure_ascii=False) + "\n")
+        draft = atomic_write(scratch / ".cga-record.json",
+                             json.dumps(document, indent=1, ensure_ascii=False) + "\n")
+        path = record_path(self.folder, self.owner)
+        os.replace(draft, path)
         self.written_ns = path.stat().st_mtime_ns
 
     def owns(self, relative: str, protect: Iterable[Path] = ()) -> bool:
