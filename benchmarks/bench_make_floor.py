@@ -18,7 +18,7 @@ import numpy as np
 from shapely.geometry import box
 
 from cga.model import Opening
-from cga.operations.base import OperationContext
+from cga.operation import OperationContext
 from cga.meshing.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape

@@ -45,7 +45,7 @@ from shapely.geometry import box
 from cga.pipeline import build
 from cga.errors import NoSolutionError
 from cga.export import DEFAULT_FORMATS
-from cga.operations.base import OperationContext
+from cga.operation import OperationContext
 from cga.operations.make_floor import MakeFloor
 from cga.operations.roomtyping.rules import RuleTable, load_rule_table
 from cga.operations.type_rooms import type_plan

@@ -7,7 +7,7 @@ keywords fill by name; a parameter given twice, an unknown keyword, a missing re
 parameter or one argument too many is an error pointing at the offending argument, with
 the operation's signature as a hint.
 
-Kinds (``operations.base`` lists them) are checked and converted here, so operations
+Kinds (``cga.operation`` lists them) are checked and converted here, so operations
 receive clean Python values: ``length`` × units (metres, at most
 :data:`~cga.lot.MAX_EXTENT`), ``area`` × units² (m²), numbers finite,
 ``count`` → ``int``, ``bool`` → ``bool``, ``axis`` → ``"x"|"y"|"z"``, ``tuple`` → tuple
@@ -20,18 +20,18 @@ from __future__ import annotations
 import difflib
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, get_args
 
 from . import ast
 from .errors import DerivationError, Span
 from .expressions import UNKNOWN, Value, describe
 from .lot import MAX_EXTENT
-from cga.operations.base import Operation, Param
+from cga.operation import Operation, Param, ParamKind
 
 __all__ = ["KINDS", "bind_arguments", "convert"]
 
-KINDS = ("length", "area", "number", "count", "bool", "string", "path", "axis", "tuple", "range")
-"""Parameter kinds this module converts (see :mod:`cga.operations.base`)."""
+KINDS: tuple[ParamKind, ...] = get_args(ParamKind)
+"""Parameter kinds this module converts (see :mod:`cga.operation`)."""
 
 _AXES = ("x", "y", "z")
 _TRUE = {"true", "1", "yes"}

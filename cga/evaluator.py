@@ -2,7 +2,7 @@
 
 The evaluator works on :mod:`cga.ast` nodes (never on parse trees) and knows nothing of
 geometry: operations do the geometry, looked up by name in a per-evaluator copy of the
-:class:`~cga.operations.OperationRegistry` (a user may register operations of their own).
+:class:`~cga.registry.OperationRegistry` (a user may register operations of their own).
 
 Derivation (DESIGN §4):
 
@@ -52,8 +52,8 @@ from .randomness import shape_rng, variable_rng
 from .resources import resolve_resource
 from .sandbox import Sandbox
 from .shape import Mass, Shape
-from cga.operations import OperationRegistry, UnknownOperation
-from cga.operations.base import Child, Operation, OperationContext
+from cga.registry import OperationRegistry, UnknownOperation
+from cga.operation import Child, Operation, OperationContext
 
 if TYPE_CHECKING:  # pragma: no cover
     from cga.operations.furniture.library import ModelLibrary
@@ -344,7 +344,7 @@ class Evaluator:
         Metres per grammar unit; overrides the grammar's ``units`` when given.
     operations:
         Operation table; copied, so registering on it later does not affect this
-        evaluator. Default: :class:`~cga.operations.OperationRegistry` ().
+        evaluator. Default: :class:`~cga.registry.OperationRegistry` ().
     max_depth:
         Longest shape path allowed before the derivation fails as runaway recursion.
     base_dir:

@@ -209,7 +209,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
     max_depth:
         Derivation depth limit (runaway recursion guard).
     operations:
-        An :class:`~cga.operations.OperationRegistry` with extra operations (copied).
+        An :class:`~cga.registry.OperationRegistry` with extra operations (copied).
     allow_paths:
         Folders besides the grammar's folder tree and the shipped data that rule
         tables, models and the lot file may be read from (``--allow-path``; see

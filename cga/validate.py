@@ -28,8 +28,8 @@ from .expressions import ATTRIBUTES, UNKNOWN, Namespace, Value, evaluate
 from .lot import lot_from_call
 from .resources import resolve_resource
 from .sandbox import Sandbox
-from cga.operations import OperationRegistry, UnknownOperation
-from cga.operations.base import CheckContext
+from cga.operation import CheckContext
+from cga.registry import OperationRegistry, UnknownOperation
 
 __all__ = ["check_grammar", "check_file"]
 

@@ -19,7 +19,7 @@ from typing import Any
 from cga.errors import DerivationError
 from cga.shape import Mass, Shape
 
-from .base import Child, Operation, OperationContext, Param
+from cga.operation import Child, Operation, OperationContext, Param
 from .faces import bottom_face, side_faces, top_face
 
 __all__ = ["ComponentSplit", "SELECTORS"]

@@ -17,7 +17,7 @@ from shapely.geometry.polygon import orient
 from cga.errors import DerivationError
 from cga.shape import Face, Mass, Shape
 
-from .base import Child, Operation, OperationContext, Param, is_number
+from cga.operation import Child, Operation, OperationContext, Param, is_number
 
 __all__ = ["Extrude"]
 

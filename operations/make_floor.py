@@ -20,7 +20,7 @@ from cga.model import Diagnostic, FloorSettings
 from cga.randomness import stream
 from cga.shape import Mass, Shape
 
-from .base import Child, Operation, OperationContext, Param, is_number
+from cga.operation import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
 from .floorplan.bsp import partition
 from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,

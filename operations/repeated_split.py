@@ -15,7 +15,7 @@ from typing import Any
 from cga.errors import DerivationError
 from cga.shape import Shape
 
-from .base import Child, Operation, OperationContext, Param, is_number
+from cga.operation import Child, Operation, OperationContext, Param, is_number
 from .slicing import check_piece_count, cut, extent
 
 __all__ = ["RepeatedSplit", "slice_count"]

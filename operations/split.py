@@ -28,7 +28,7 @@ from typing import Any
 from cga.errors import DerivationError
 from cga.shape import Shape
 
-from .base import Child, Operation, OperationContext, Param
+from cga.operation import Child, Operation, OperationContext, Param
 from .slicing import check_piece_count, cut, extent
 
 __all__ = ["Split", "layout"]

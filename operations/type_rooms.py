@@ -31,7 +31,7 @@ from cga.errors import DerivationError, NoSolutionError, excerpt
 from cga.model import OUTSIDE, Diagnostic, Door, FloorPlan, Room, Wall, Window
 from cga.shape import Shape
 
-from .base import CheckContext, Child, Operation, OperationContext, Param
+from cga.operation import CheckContext, Child, Operation, OperationContext, Param
 from .roomtyping.assign import Typing, assign_types
 from .roomtyping.backtrack import RoomSet
 from .roomtyping.door_states import DOOR_STATE_CHOICES, with_door_states

@@ -19,7 +19,7 @@ import pytest
 import shapely
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from cga.operations.base import OperationContext
+from cga.operation import OperationContext
 from cga.meshing.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape

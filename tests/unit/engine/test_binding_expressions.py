@@ -9,7 +9,7 @@ from cga import ast
 from cga.binding import bind_arguments
 from cga.errors import DerivationError, Span
 from cga.expressions import ATTRIBUTES, UNKNOWN, Namespace, evaluate
-from cga.operations.base import Operation, Param
+from cga.operation import Operation, Param
 
 S = Span("k.grammar", 1, 1)
 

@@ -8,8 +8,8 @@ from shapely.geometry import box
 
 from cga.errors import DerivationError
 from cga.evaluator import Evaluator, derive
-from cga.operations import OperationRegistry
-from cga.operations.base import Child, Operation, Param
+from cga.registry import OperationRegistry
+from cga.operation import Child, Operation, Param
 from cga.shape import Mass
 
 LOT = box(0, 0, 10, 6)

@@ -7,7 +7,7 @@ import pytest
 from shapely.geometry import Point, Polygon, box
 
 from cga.errors import DerivationError
-from cga.operations.base import OperationContext
+from cga.operation import OperationContext
 from cga.operations.component_split import ComponentSplit
 from cga.operations.extrude import Extrude
 from cga.operations.repeated_split import RepeatedSplit, slice_count

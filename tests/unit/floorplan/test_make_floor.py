@@ -9,8 +9,8 @@ from shapely.geometry import Polygon, box
 
 from cga.errors import DerivationError
 from cga.evaluator import derive
-from cga.operations import OperationRegistry
-from cga.operations.base import OperationContext
+from cga.registry import OperationRegistry
+from cga.operation import OperationContext
 from cga.meshing.solids import floor_nodes
 from cga.operations.make_floor import MakeFloor
 from cga.parser import parse

@@ -8,8 +8,8 @@ from shapely.geometry import box
 
 from cga.errors import DerivationError, NoSolutionError, RuleTableError
 from cga.model import OUTSIDE
-from cga.operations import OperationRegistry
-from cga.operations.base import OperationContext
+from cga.registry import OperationRegistry
+from cga.operation import OperationContext
 from cga.operations.floorplan.rectangles import plan_from_rectangles
 from cga.operations.type_rooms import TypeRooms
 from cga.resources import resolve_resource

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, ClassVar
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Literal
 
 import numpy as np
 
@@ -35,8 +35,12 @@ if TYPE_CHECKING:  # pragma: no cover
     from cga.sandbox import Sandbox
     from cga.shape import Shape
 
-__all__ = ["REQUIRED", "Param", "Child", "OperationContext", "CheckContext", "Operation",
-           "is_number"]
+__all__ = ["REQUIRED", "ParamKind", "Param", "Child", "OperationContext", "CheckContext",
+           "Operation", "is_number"]
+
+ParamKind = Literal["length", "area", "number", "count", "bool", "string", "path", "axis",
+                    "tuple", "range"]
+"""The kinds of operation parameters (the table above); :mod:`cga.binding` converts each."""
 
 
 class _Required:
@@ -53,9 +57,9 @@ class Param:
     """One parameter of an operation's signature."""
 
     name: str
-    kind: str
+    kind: ParamKind
     default: Any = REQUIRED
-    items: tuple[str, ...] = ()
+    items: tuple[ParamKind, ...] = ()
     keyword_only: bool = False
     doc: str = ""
 
