@@ -31,9 +31,12 @@ import traceback
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .errors import CGAError, ExportError, UsageError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .scene import Scene
 
 __all__ = ["BatchRecord", "BatchReport", "run_batch", "read_manifest", "seed_folder",
            "max_jobs", "MANIFEST", "LOCK"]
@@ -184,9 +187,8 @@ def _append_record(out_dir: Path, record: BatchRecord) -> None:
         os.close(fd)
 
 
-def _summarise(scene: Any, seconds: float, seed: int) -> BatchRecord:
-    checks = {name: bool(result.get("passed")) for name, result in scene.checks.items()
-              if isinstance(result, dict) and "passed" in result}
+def _summarise(scene: Scene, seconds: float, seed: int) -> BatchRecord:
+    checks = {name: report.passed for name, report in scene.checks.items()}
     left_out = sum(1 for d in scene.all_diagnostics()
                    if d.stage == "add_furniture" and d.level == "warning")
     items = sum(1 for plan in scene.floors for item in plan.furniture if not item.is_detail)

@@ -22,11 +22,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from shapely.geometry import LineString, Point, Polygon, box
 from shapely import affinity
+
+if TYPE_CHECKING:  # pragma: no cover
+    import networkx as nx
+
+    from cga.operations.floorplan.dcel import DCEL
 
 __all__ = [
     "OUTSIDE",
@@ -308,7 +313,10 @@ class FloorPlan:
 
     ``elevation`` is the y of the bottom of the floor slab, ``height`` the storey height;
     the walking surface is at :attr:`floor_y`. ``dcel`` is the half-edge structure built
-    by ``make_floor`` (``cga.operations.floorplan.dcel.DCEL``).
+    by ``make_floor``. ``type_rooms`` sets ``room_graph`` (nodes: room ids and
+    :data:`OUTSIDE`, attribute ``type``; one edge per door, attributes ``door``, ``wall``,
+    ``reason``) and ``entry``, the room the floor is entered by: the front door's room,
+    or where the stair arrives on a floor without one. Every room is reachable from it.
     """
 
     index: int
@@ -318,13 +326,14 @@ class FloorPlan:
     settings: FloorSettings
     rooms: tuple[Room, ...]
     walls: tuple[Wall, ...]
-    dcel: Any = None
+    dcel: "DCEL | None" = None
     windows: tuple[Window, ...] = ()
     doors: tuple[Door, ...] = ()
     furniture: tuple[FurnitureItem, ...] = ()
-    room_graph: Any = None  # networkx.Graph once typed: nodes room ids + OUTSIDE
+    room_graph: "nx.Graph | None" = None
     diagnostics: tuple[Diagnostic, ...] = ()
     is_top: bool = False
+    entry: int | None = None
 
     @property
     def floor_y(self) -> float:

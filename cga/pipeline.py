@@ -111,8 +111,8 @@ def run_checks(scene: Scene, *, robot_radius: float = 0.25) -> None:
     """Run the physics and navigability checks on ``scene.nodes`` into ``scene.checks``
     (floors only).
 
-    Each entry is the check's report as a dict (``passed`` plus details) with its
-    one-line ``summary``; their times go to ``scene.timings``.
+    Each entry is the check's report (a :class:`~cga.report.CheckReport`); their times
+    go to ``scene.timings``.
     """
     _run_checks(scene, robot_radius, _Progress(scene.timings, quiet=True))
 
@@ -125,10 +125,10 @@ def _run_checks(scene: Scene, robot_radius: float, progress: _Progress) -> None:
 
     with progress.stage("physics", "physics check (settling furniture)…"):
         report = check_physics(scene)
-    scene.checks["physics"] = {**report.to_dict(), "summary": report.summary()}
+    scene.checks["physics"] = report
     with progress.stage("navigability", "navigability check…"):
         reach = check_navigability(scene, radius=robot_radius)
-    scene.checks["navigability"] = {**reach.to_dict(), "summary": reach.summary()}
+    scene.checks["navigability"] = reach
 
 
 def export_scene(scene: Scene, out_dir: str | Path, formats: Sequence[str], *,
@@ -263,10 +263,10 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                 scene.nodes  # noqa: B018 - made once here, timed; checks and exporters reuse them
             if physics:
                 _run_checks(scene, robot_radius, progress)
-            failed = [c for c in scene.checks.values() if not c.get("passed", True)]
+            failed = [c for c in scene.checks.values() if not c.passed]
             if strict and failed:
                 raise NoSolutionError("strict mode: the build does not pass its checks",
-                                      [c.get("summary", "") for c in failed])
+                                      [c.summary() for c in failed])
             if formats:
                 with progress.stage("export", "writing files…"):
                     export_scene(scene, out_dir or default_out_dir(scene.name), formats,

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
 from .model import Diagnostic, FloorPlan
+from .report import CheckReport
 from .shape import Shape
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -97,7 +98,8 @@ class Scene:
 
     ``terminals`` are the leaves of the shape tree in derivation order; those with a
     ``plan`` are storeys, the rest plain geometry. ``checks`` is filled by the physics
-    and navigability checks; ``timings`` maps stage name → seconds. ``library`` is the
+    and navigability checks (check name → report object); ``timings`` maps stage name →
+    seconds. ``library`` is the
     build's furniture model library (the one ``add_furniture`` sized items with); the
     meshing layer poses its models. :attr:`nodes` are the build's meshes, made once.
     """
@@ -109,7 +111,7 @@ class Scene:
     source: Path | None = None
     diagnostics: list[Diagnostic] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
-    checks: dict[str, Any] = field(default_factory=dict)
+    checks: dict[str, CheckReport] = field(default_factory=dict)
     library: "ModelLibrary | None" = None
     _nodes: tuple[SceneNode, ...] | None = field(default=None, repr=False, compare=False)
 

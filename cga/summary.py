@@ -58,9 +58,8 @@ def summary_dict(scene: Scene, *, out_dir: str | Path | None = None) -> dict[str
         "shapes": len(scene.masses),
         "diagnostics": [{"level": d.level, "stage": d.stage, "message": d.message,
                          "floor": d.floor, "room": d.room} for d in scene.all_diagnostics()],
-        "checks": {name: {"passed": bool(result.get("passed")),
-                          "summary": result.get("summary", "")}
-                   for name, result in scene.checks.items()},
+        "checks": {name: {"passed": report.passed, "summary": report.summary()}
+                   for name, report in scene.checks.items()},
         "timings": {name: round(seconds, 4) for name, seconds in scene.timings.items()},
     }
     if out_dir is not None:

@@ -14,8 +14,8 @@ Entry and front door. The floor whose rule table has an ``isOutsideConnected`` r
 the front door in that room's outer wall, if it is the ground floor (``index`` 0).
 Upper floors get no front door (it would open into the air); they are entered by the
 stair, which arrives in the room of the ``isOutsideConnected`` type when the floor has
-one, else in the largest room. The entry room is ``room_graph.graph["entry"]``; every
-room is reachable from it.
+one, else in the largest room. The entry room is ``FloorPlan.entry``; every room is
+reachable from it.
 """
 
 from __future__ import annotations
@@ -131,7 +131,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     result = typed.with_changes(walls=tuple(walls[w.id] for w in typed.walls),
                                 windows=windows, doors=tuple(doors),
                                 diagnostics=plan.diagnostics + tuple(notes))
-    return result.with_changes(room_graph=room_graph(result, doors, entry=entry))
+    return result.with_changes(room_graph=room_graph(result, doors), entry=entry)
 
 
 def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Window, ...],

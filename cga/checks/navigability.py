@@ -8,7 +8,7 @@ its centre to the nearest obstacle, is at least the radius), and floods the driv
 cells from the start. The ground floor starts outside its front door, so a wardrobe in
 front of the door shows up as the door being blocked. Floors without a front door start
 in their entry room, where ``type_rooms`` says the stair arrives
-(``room_graph.graph["entry"]``), or, on an untyped floor, in the largest room: the model
+(``FloorPlan.entry``), or, on an untyped floor, in the largest room: the model
 has no stair geometry yet, and the report says so.
 
 Doors: a robot (or its planner) can open a door, so a room counts as reachable through
@@ -353,10 +353,8 @@ class _FloorCheck:
             return ("front_door", self._outside_of(self.front), inside,
                     f"the robot starts outside front door {self.front.id}")
         why = ("upper floor" if self.plan.index > 0 else "floor without a front door")
-        graph = self.plan.room_graph
-        entry = graph.graph.get("entry") if graph is not None else None
-        if entry is not None:
-            room = self.plan.room(entry)
+        if self.plan.entry is not None:
+            room = self.plan.room(self.plan.entry)
             kind, which = "entry_room", "the entry room where the stair arrives"
         else:
             room = max(self.plan.rooms, key=lambda r: (r.area, -r.id))

@@ -112,7 +112,8 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "nodes": [_node(n) for n in nodes],
         "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
                         for d in scene.all_diagnostics()],
-        "checks": _clean(scene.checks, "checks"),
+        "checks": _clean({name: {**report.to_dict(), "summary": report.summary()}
+                          for name, report in scene.checks.items()}, "checks"),
         "timings": _clean(dict(scene.timings), "timings"),
     }
     return _clean(document, "")

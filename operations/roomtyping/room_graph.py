@@ -162,13 +162,12 @@ def _too_short(room: int, rooms: Sequence[Room], sites: DoorSites) -> str:
             "leaves room for a door and its margins; make rooms wider or doors narrower")
 
 
-def room_graph(plan: FloorPlan, doors: Sequence[Door], *, entry: int) -> nx.Graph:
+def room_graph(plan: FloorPlan, doors: Sequence[Door]) -> nx.Graph:
     """The room graph: nodes are room ids and :data:`~cga.model.OUTSIDE` (attribute
     ``type``: the room type, ``"outside"``), one edge per door (attributes ``door``,
     ``wall``, ``reason``, ``state`` and ``angle``: a planner sees which doors it must
-    open). ``graph.graph["entry"]`` is the room the floor is entered by
-    (front door, or stair on upper floors)."""
-    graph = nx.Graph(entry=entry, floor=plan.index)
+    open)."""
+    graph = nx.Graph(floor=plan.index)
     graph.add_node(OUTSIDE, type="outside")
     for room in plan.rooms:
         graph.add_node(room.id, type=room.type, area=room.area)

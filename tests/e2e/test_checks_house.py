@@ -85,8 +85,8 @@ def _cautious_reach(plan: FloorPlan, radius: float) -> set[int]:
 def _run(seed: int) -> dict:
     """Build one seed with its checks; summarise what the test asserts."""
     scene = build(HOUSE, seed=seed, formats=(), quiet=True)
-    physics = scene.checks["physics"]
-    reach = scene.checks["navigability"]
+    physics = scene.checks["physics"].to_dict()
+    reach = scene.checks["navigability"].to_dict()
     floors = []
     for plan, floor in zip(scene.floors, reach["floors"]):
         floors.append({

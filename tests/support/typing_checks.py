@@ -119,7 +119,7 @@ def validate_typed_plan(plan, rules_path: str | Path, *, units: float = 1.0,
             assert rooms[entry].type == outside_rule["type"], rooms[entry].type
     else:
         assert not fronts, fronts
-        entry = plan.room_graph.graph["entry"]
+        entry = plan.entry
     assert all(OUTSIDE not in d.rooms for d in plan.doors if not d.is_front)
 
     # reachability through the doors, from the outside (or the entry room)

@@ -131,15 +131,11 @@ def test_floor_without_front_door_starts_in_its_largest_room(kit):
 
 
 def test_upper_floor_starts_in_the_entry_room_typing_chose(kit):
-    import networkx as nx
-
     settings = kit.FloorSettings(windows_per_wall=0)
     plan = kit.plan_from_rectangles([(0, 0, 3, 4), (3, 0, 8, 4)], settings=settings,
                                     index=1, elevation=3.0)
     plan = kit.add_door(plan, kit.find_wall(plan, (0, 1)))
-    graph = nx.Graph(entry=0)
-    graph.add_edge(0, 1)
-    plan = plan.with_changes(room_graph=graph)
+    plan = plan.with_changes(entry=0)
     floor = check_navigability(kit.scene_of(plan), kit.structure(plan)).floors[0]
     assert floor.start == "entry_room" and floor.start_room == 0
     assert "entry room" in floor.note

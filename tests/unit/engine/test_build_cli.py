@@ -13,6 +13,7 @@ from cga.cli import main
 from cga.errors import (DerivationError, GrammarSyntaxError, NoSolutionError,
                         ResourceNotFoundError, UsageError)
 from cga.export import EXPORTERS
+from cga.report import CheckReport
 from cga.summary import summary_dict
 from cga.validate import check_file
 
@@ -71,12 +72,22 @@ def test_failed_export_leaves_no_output(grammar_file, tmp_path, monkeypatch):
 
 
 def test_strict_fails_on_a_failed_check_and_writes_nothing(grammar_file, tmp_path, monkeypatch):
+    class Failed:
+        passed = False
+
+        def summary(self):
+            return "physics: 0/1 items at rest"
+
+        def to_dict(self):
+            return {"passed": False}
+
     def failing(scene, robot_radius, progress):
-        scene.checks["physics"] = {"passed": False, "summary": "physics: 0/1 items at rest"}
+        scene.checks["physics"] = Failed()
 
     monkeypatch.setattr(build_module, "_run_checks", failing)
     scene = build(grammar_file, out_dir=tmp_path / "lenient", quiet=True)
-    assert scene.checks["physics"]["passed"] is False
+    assert isinstance(scene.checks["physics"], CheckReport)
+    assert scene.checks["physics"].passed is False
     with pytest.raises(NoSolutionError, match="physics: 0/1 items at rest"):
         build(grammar_file, out_dir=tmp_path / "strict", strict=True, quiet=True)
     assert not (tmp_path / "strict").exists()

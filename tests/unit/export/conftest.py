@@ -23,6 +23,7 @@ from cga.model import (OUTSIDE, Door, FloorPlan, FloorSettings, FurnitureItem, O
 from cga.scene import Scene, SceneNode
 from cga.shape import Mass, Shape
 from items import item_info
+from reports import FixedReport
 
 
 STOREY = 3.0
@@ -187,7 +188,7 @@ def make_scene() -> tuple[Scene, list[SceneNode]]:
                  for p in plans]
     scene = Scene(name="house", seed=7, units=1.0, terminals=terminals,
                   timings={"derive": 0.12, "export": 0.05},
-                  checks={"navigability": {"passed": True, "unreachable": []}})
+                  checks={"navigability": FixedReport(details={"unreachable": []})})
     return scene, make_nodes(plans)
 
 

@@ -11,6 +11,7 @@ import pytest
 import cga
 from cga.errors import ExportError
 from cga.export.scene_json import export_scene_json, load_schema, scene_json_text
+from reports import FixedReport
 
 
 @pytest.fixture(scope="module")
@@ -124,6 +125,6 @@ def test_furniture_pose_and_box(document):
 
 def test_nan_in_checks_is_an_export_error(small_scene):
     scene, nodes = small_scene
-    bad = dataclasses.replace(scene, checks={"physics": {"max_penetration": float("nan")}})
+    bad = dataclasses.replace(scene, checks={"physics": FixedReport(details={"max_penetration": float("nan")})})
     with pytest.raises(ExportError, match=r"checks\.physics\.max_penetration"):
         scene_json_text(bad, nodes)

@@ -157,7 +157,7 @@ def test_upper_floor_has_no_front_door_and_enters_by_the_outside_rule_room(tmp_p
     plan = plan_from_rectangles(THREE, index=1)
     typed = type_plan(plan, rules(*table), np.random.default_rng(0))
     validate_typed_plan(typed, write(tmp_path, table), front_door=False)
-    entry = typed.room_graph.graph["entry"]
+    entry = typed.entry
     assert typed.room(entry).type == "Livingroom"
     assert not typed.room_graph.edges(OUTSIDE)
     assert any("upper floor" in d.message for d in typed.diagnostics)
@@ -167,7 +167,7 @@ def test_ground_floor_without_outside_rule_warns_and_enters_by_the_largest_room(
     table = rules("Office;1;1;Office;0;3;0")
     typed = type_plan(plan_from_rectangles(THREE), table, np.random.default_rng(0))
     assert typed.front_door() is None
-    assert typed.room_graph.graph["entry"] == 0  # 60 m², the largest
+    assert typed.entry == 0  # 60 m², the largest
     warning = next(d for d in typed.diagnostics if "no front door" in d.message)
     assert warning.level == "warning" and "isOutsideConnected" in warning.message
 
