@@ -25,6 +25,7 @@ from .floorplan.assemble import plan_from_dcel
 from .floorplan.bsp import partition
 from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,
                                     circulation_faces)
+from .floorplan.errors import PartitionError
 from .floorplan.tiling import tile_with_fixed_faces
 from .roomtyping.doors import DOOR_MARGIN
 
@@ -125,7 +126,7 @@ class MakeFloor(Operation):
         try:
             result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
                                cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
-        except ValueError as error:
+        except PartitionError as error:
             raise DerivationError(f"make_floor cannot cut this footprint into rooms: {error}",
                                   hint=_footprint_hint(footprint)) from None
         if result.shortfall is not None:
@@ -136,7 +137,7 @@ class MakeFloor(Operation):
             plan = plan_from_dcel(result.dcel, settings=settings, index=index,
                                   elevation=mass.base, height=mass.height,
                                   circulation=result.circulation)
-        except ValueError as error:
+        except PartitionError as error:
             raise DerivationError(f"the floor is too narrow for its walls: {error}") from None
         return [Child(successor=0, geometry=mass, scope=shape.scope, plan=plan)]
 

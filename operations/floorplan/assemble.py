@@ -16,6 +16,7 @@ from shapely.geometry.polygon import orient
 from cga.model import FloorPlan, FloorSettings, Room, Wall
 
 from .dcel import DCEL
+from .errors import PartitionError
 from .openings import place_windows
 
 __all__ = ["plan_from_dcel"]
@@ -50,7 +51,7 @@ def plan_from_dcel(dcel: DCEL, *, settings: FloorSettings, index: int, elevation
 
     Raises
     ------
-    ValueError
+    PartitionError
         If a room has no connected free floor left once the walls are subtracted
         (a room narrower than its walls).
     """
@@ -75,7 +76,7 @@ def plan_from_dcel(dcel: DCEL, *, settings: FloorSettings, index: int, elevation
     rooms = []
     for face, polygon, interior in zip(dcel.faces, polygons, interiors):
         if not isinstance(interior, Polygon) or interior.is_empty:
-            raise ValueError(
+            raise PartitionError(
                 f"room {face.id} ({polygon.area:.2f} m²) has no connected free floor inside "
                 f"walls {t:.2f} m thick")
         rooms.append(Room(face.id, polygon, orient(interior),

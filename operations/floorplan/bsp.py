@@ -165,8 +165,10 @@ def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator,
     Raises
     ------
     ValueError
-        If an argument is out of range, the footprint is not a valid polygon, or a fixed
-        face is not a polygon inside the footprint apart from the others.
+        An argument is out of range (a caller's bug: ``make_floor`` checks them).
+    PartitionError
+        The footprint is not a valid polygon, or a fixed face is not a polygon inside the
+        footprint apart from the others.
 
     Notes
     -----

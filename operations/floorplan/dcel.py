@@ -28,6 +28,8 @@ from collections.abc import Iterator, Sequence
 
 from cga.model import OUTSIDE
 
+from .errors import PartitionError
+
 __all__ = ["EPS", "Vertex", "HalfEdge", "Face", "DCEL", "signed_area", "point_in_ring"]
 
 EPS = 1e-7
@@ -162,7 +164,7 @@ class DCEL:
 
         Raises
         ------
-        ValueError
+        PartitionError
             If a ring is degenerate or clockwise, two rings use the same directed segment
             (overlap), or the boundary of the union is not a single simple cycle.
 
@@ -184,16 +186,16 @@ class DCEL:
 
         for index, ring in enumerate(polygons):
             if len(ring) < 3 or signed_area(ring) <= EPS:
-                raise ValueError(f"polygon {index} is degenerate or not counter-clockwise")
+                raise PartitionError(f"polygon {index} is degenerate or not counter-clockwise")
             face = Face(index)
             dcel.faces.append(face)
             verts = [vertex(p) for p in ring]
             cycle = []
             for a, b in zip(verts, verts[1:] + verts[:1]):
                 if a is b:
-                    raise ValueError(f"polygon {index} repeats the point {a.point}")
+                    raise PartitionError(f"polygon {index} repeats the point {a.point}")
                 if (a.id, b.id) in directed:
-                    raise ValueError(f"polygons overlap along {a.point} -> {b.point}")
+                    raise PartitionError(f"polygons overlap along {a.point} -> {b.point}")
                 twin = directed.get((b.id, a.id))
                 h = dcel._new_half_edge(a, twin.edge if twin else dcel._next_edge_id())
                 h.face = face
@@ -212,17 +214,17 @@ class DCEL:
                 o.face = dcel.outside
                 o.twin, h.twin = h, o
                 if o.origin.id in outer_from:
-                    raise ValueError(f"the region's boundary touches itself at {o.origin.point}")
+                    raise PartitionError(f"the region's boundary touches itself at {o.origin.point}")
                 outer_from[o.origin.id] = o
         if not outer_from:
-            raise ValueError("the polygons do not bound a region")
+            raise PartitionError("the polygons do not bound a region")
         for o in outer_from.values():
             o.next = outer_from[o.destination.id]
             o.next.prev = o
         start = next(iter(outer_from.values()))
         dcel.outside.edge = start
         if len(dcel._cycle(start)) != len(outer_from):
-            raise ValueError("the polygons' union has a hole or is not connected")
+            raise PartitionError("the polygons' union has a hole or is not connected")
         return dcel
 
     # ------------------------------------------------------------------ queries
@@ -290,7 +292,7 @@ class DCEL:
 
         Raises
         ------
-        ValueError
+        PartitionError
             If ``point`` is not on the edge or coincides with one of its ends.
 
         Notes
@@ -299,7 +301,7 @@ class DCEL:
         """
         a, b = edge.start, edge.end
         if not _on_open_segment(point, a, b):
-            raise ValueError(f"{point} is not strictly inside the edge {a} -> {b}")
+            raise PartitionError(f"{point} is not strictly inside the edge {a} -> {b}")
         twin = edge.twin
         w = self._new_vertex(float(point[0]), float(point[1]))
         new_edge = self._next_edge_id()
@@ -333,7 +335,7 @@ class DCEL:
 
         Raises
         ------
-        ValueError
+        PartitionError
             If ``face`` is the outside, a point is not on the boundary, or the open
             segment leaves the face or touches its boundary.
 
@@ -342,13 +344,13 @@ class DCEL:
         O(n) in the number of boundary edges of ``face``.
         """
         if face.is_outside:
-            raise ValueError("the outside face cannot be split")
+            raise PartitionError("the outside face cannot be split")
         if math.dist(p, q) <= EPS:
-            raise ValueError("the cut segment has zero length")
+            raise PartitionError("the cut segment has zero length")
         ring = self.points(face)
         mid = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
         if not point_in_ring(mid, ring) or _segment_touches_ring(p, q, ring):
-            raise ValueError(f"the segment {p} -> {q} is not a chord of face {face.id}")
+            raise PartitionError(f"the segment {p} -> {q} is not a chord of face {face.id}")
         a = self._boundary_edge_at(face, p)
         b = self._boundary_edge_at(face, q)
         return self._connect(a, b)
@@ -395,7 +397,7 @@ class DCEL:
             if _on_open_segment(p, h.start, h.end):
                 self.split_edge(h, p)
                 return h.next
-        raise ValueError(f"{p} is not on the boundary of face {face.id}")
+        raise PartitionError(f"{p} is not on the boundary of face {face.id}")
 
     def _connect(self, a: HalfEdge, b: HalfEdge) -> HalfEdge:
         """Join ``a.origin`` to ``b.origin`` inside their common face."""

@@ -23,6 +23,7 @@ from cga.model import FloorPlan, FloorSettings
 
 from .assemble import plan_from_dcel
 from .dcel import DCEL, EPS
+from .errors import PartitionError
 
 __all__ = ["plan_from_rectangles"]
 
@@ -71,7 +72,7 @@ def plan_from_rectangles(rectangles: Sequence[Rectangle], *, settings: FloorSett
     try:
         dcel = DCEL.from_polygons(rings)
         return plan_from_dcel(dcel, settings=settings, index=index, elevation=elevation, height=height)
-    except ValueError as error:
+    except PartitionError as error:
         raise UsageError(f"rectangles do not make a floor: {error}") from None
 
 

@@ -25,6 +25,7 @@ from shapely.geometry.polygon import orient
 from shapely.ops import split
 
 from .dcel import EPS
+from .errors import PartitionError
 
 __all__ = ["tile_with_fixed_faces"]
 
@@ -52,7 +53,7 @@ def tile_with_fixed_faces(footprint: Sequence[Point],
 
     Raises
     ------
-    ValueError
+    PartitionError
         A fixed polygon is invalid, leaves the footprint or overlaps another one.
 
     Notes
@@ -73,12 +74,12 @@ def _tile(footprint: tuple[Point, ...],
     for i, ring in enumerate(fixed):
         polygon = Polygon(ring)
         if len(ring) < 3 or not polygon.is_valid or polygon.area <= EPS:
-            raise ValueError(f"fixed face {i} is not a simple polygon with an area")
+            raise PartitionError(f"fixed face {i} is not a simple polygon with an area")
         if polygon.difference(outline).area > 1e-9:
-            raise ValueError(f"fixed face {i} reaches outside the footprint")
+            raise PartitionError(f"fixed face {i} reaches outside the footprint")
         for j, other in enumerate(shapes):
             if polygon.intersection(other).area > 1e-9:
-                raise ValueError(f"fixed faces {j} and {i} overlap")
+                raise PartitionError(f"fixed faces {j} and {i} overlap")
         shapes.append(orient(polygon, sign=1.0))
     free = outline.difference(shapely.union_all(shapes)) if shapes else outline
     pieces = _simple_pieces(free, outline)
@@ -98,7 +99,7 @@ def _simple_pieces(region: Polygon | MultiPolygon | shapely.Geometry,
         if not piece.interiors:
             done.append(shapely.simplify(piece, 0.0))
             if len(done) > _MAX_PIECES:
-                raise ValueError("the fixed faces cut the floor into too many pieces")
+                raise PartitionError("the fixed faces cut the floor into too many pieces")
             continue
         minx, minz, maxx, maxz = outline.bounds
         hx0, hz0, hx1, hz1 = Polygon(piece.interiors[0]).bounds

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from networkx.utils import UnionFind
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
@@ -181,30 +182,25 @@ class Passage:
             return None
         areas = shapely.area(pieces).tolist()
         reached = [any(row[k] for row in meets) for k in doors]
-        owner = list(doors)  # union-find: a door joins the pieces its approach meets
-
-        def find(k: int) -> int:
-            while owner[k] != k:
-                k = owner[k]
-            return k
-
+        joined = UnionFind(doors)  # a door joins the pieces its approach meets
         touched = []
         for row, area in zip(meets, areas):
             met = [k for k in doors if row[k]]
             if met:
                 touched.append((met[0], area))
-                for k in met[1:]:
-                    owner[find(k)] = find(met[0])
+                joined.union(*met)
+        # each class of doors named by its lowest door, so ties break the same way always
+        name = {k: min(members) for members in joined.to_sets() for k in members}
         for group in self.groups:
-            classes = {find(k) for k in group if reached[k]}
+            classes = {name[k] for k in group if reached[k]}
             if len(classes) == 1 and all(reached[k] for k in group):
                 continue
             class_area = dict.fromkeys(classes, 0.0)
             for k, area in touched:
-                if find(k) in class_area:
-                    class_area[find(k)] += area
+                if name[k] in class_area:
+                    class_area[name[k]] += area
             main = max(classes, key=lambda c: (class_area[c], -c), default=-1)
-            cut = next(k for k in group if not reached[k] or find(k) != main)
+            cut = next(k for k in group if not reached[k] or name[k] != main)
             return Blockage("door", self.labels[cut])
         total = sum(areas)
         reached_area = sum(area for _, area in touched)
@@ -227,13 +223,10 @@ def _meets(pieces: np.ndarray, zones: np.ndarray) -> np.ndarray:
 
 
 def _groups(meets: np.ndarray) -> list[list[int]]:
-    """Doors connected in the empty room, as lists of door indices (more than one door
-    each: a door alone cannot be cut off from itself)."""
-    groups: list[set[int]] = []
+    """Doors connected in the empty room, as sorted lists of door indices ordered by
+    their lowest door (more than one door each: a door alone cannot be cut off from
+    itself)."""
+    joined = UnionFind(range(meets.shape[1]))
     for row in meets:
-        met = set(np.flatnonzero(row).tolist())
-        if not met:
-            continue
-        joined = [g for g in groups if g & met]
-        groups = [g for g in groups if not g & met] + [met.union(*joined)]
-    return [sorted(g) for g in groups if len(g) > 1]
+        joined.union(*np.flatnonzero(row).tolist())
+    return sorted(sorted(g) for g in joined.to_sets() if len(g) > 1)
