@@ -1,7 +1,7 @@
-"""A small Python API for rule authors: test a typing table with pytest.
+"""A small Python API for rule authors: test a typing or furniture table with pytest.
 
-DESIGN §1 and §7: a rule author builds a floor from rectangles, types it with a seed and
-asserts types, adjacency and doors::
+A rule author builds a floor from rectangles, types (and furnishes) it with a seed and
+asserts types, adjacency and doors (docs/room_typing.md, docs/furniture.md)::
 
     from cga.authoring import floor_from_rectangles, type_floor, rooms_of_type, are_adjacent
 
@@ -15,6 +15,10 @@ asserts types, adjacency and doors::
 Rooms may be named by id (``int``) or by type (``str``: any room of that type);
 :data:`~cga.model.OUTSIDE` or ``"outside"`` names the outside. Everything is in metres
 and m² (no grammar ``units``).
+
+Names: these ``*_floor`` functions take paths and seeds, as a rule author has them; each
+wraps the operation library's function that takes parsed tables and a random stream
+(``plan_from_rectangles``, ``type_plan``, ``add_furniture.furnish``).
 """
 
 from __future__ import annotations
@@ -29,13 +33,17 @@ import numpy as np
 
 from cga.errors import UsageError
 from cga.model import OUTSIDE, Door, FloorPlan, FloorSettings, Room
+from cga.operations.add_furniture import furnish
 from cga.operations.floorplan.rectangles import plan_from_rectangles
+from cga.operations.furniture.library import ModelLibrary, default_library
+from cga.operations.furniture.passage import PASSAGE_WIDTH
+from cga.operations.furniture.rules import load_furniture_rules
 from cga.operations.roomtyping.rules import load_rule_table
 from cga.operations.type_rooms import type_plan
 from cga.resources import resolve_resource
 
-__all__ = ["floor_from_rectangles", "type_floor", "rooms_of_type", "are_adjacent",
-           "doors_between"]
+__all__ = ["floor_from_rectangles", "type_floor", "furnish_floor", "rooms_of_type",
+           "are_adjacent", "doors_between"]
 
 RoomRef = int | str
 """A room id, a room type (any room of that type), or ``"outside"``."""
@@ -95,6 +103,50 @@ def type_floor(plan: FloorPlan, rules_path: str | Path, *, seed: int = 0, strict
     table = load_rule_table(resolve_resource(rules_path, "rules"))
     return type_plan(plan, table, np.random.default_rng(seed), strict=strict,
                      door_position=door_position)
+
+
+def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: float = 1.0,
+                  steering_iterations: int = 10, clearance_tries: int = 20,
+                  passage_width: float = PASSAGE_WIDTH,
+                  library: ModelLibrary | None = None) -> FloorPlan:
+    """Furnish a typed floor as ``add_furniture`` does in a grammar.
+
+    Parameters
+    ----------
+    plan:
+        A typed floor, e.g. from :func:`type_floor`.
+    rules:
+        The furniture table: a path, or the name of a shipped table such as
+        ``"furniture_house.csv"``.
+    seed:
+        Seed of the random stream; the same seed gives the same furniture.
+    units:
+        Metres per unit of the table's distances.
+    steering_iterations, clearance_tries:
+        As the operation's ``steeringIterations`` and ``clearanceTries``.
+    passage_width:
+        As the operation's ``passage_width``, in metres (not scaled by ``units``).
+    library:
+        The models; default: the shipped ones.
+
+    Returns
+    -------
+    FloorPlan
+        A copy with ``furniture`` and the messages about left-out items appended to
+        ``diagnostics``.
+
+    Raises
+    ------
+    ResourceNotFoundError, RuleTableError
+        The table or one of its models does not exist, or the table is malformed.
+    UsageError
+        ``passage_width`` is negative.
+    """
+    if passage_width < 0:
+        raise UsageError(f"passage_width must not be negative, got {passage_width:g}")
+    table = load_furniture_rules(resolve_resource(rules, "rules"))
+    return furnish(plan, table, library or default_library(), np.random.default_rng(seed),
+                   units, steering_iterations, clearance_tries, passage_width)
 
 
 def _rooms(plan: FloorPlan, ref: RoomRef) -> list[int]:

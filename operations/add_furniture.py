@@ -14,9 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError, UsageError
+from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError
 from cga.model import FloorPlan
-from cga.resources import resolve_resource
 from cga.shape import Shape
 
 from cga.operation import CheckContext, Child, Operation, OperationContext, Param, is_number
@@ -25,7 +24,7 @@ from .furniture.passage import PASSAGE_WIDTH
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
 from .furniture.solver import furnish_plan
 
-__all__ = ["AddFurniture", "LIBRARY_CACHE_KEY", "MAX_STEERING_ITERATIONS", "furnish_floor"]
+__all__ = ["AddFurniture", "LIBRARY_CACHE_KEY", "MAX_STEERING_ITERATIONS", "furnish"]
 
 LIBRARY_CACHE_KEY = "model_library"
 """Key of the build's :class:`~cga.operations.furniture.library.ModelLibrary` in
@@ -118,59 +117,17 @@ class AddFurniture(Operation):
                 ctx.span, hint="apply type_rooms(...) before add_furniture")
         self.check_values(args, ctx.units)
         path = Path(ctx.resolve(args["rules"], "rules"))
-        furnished = _furnish(plan, _rules(ctx, path), _library(ctx), ctx.rng, ctx.units,
-                             args["steeringIterations"], args["clearanceTries"],
-                             args["passage_width"])
+        furnished = furnish(plan, _rules(ctx, path), _library(ctx), ctx.rng, ctx.units,
+                            args["steeringIterations"], args["clearanceTries"],
+                            args["passage_width"])
         return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=furnished)]
 
 
-def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: float = 1.0,
-                  steering_iterations: int = 10, clearance_tries: int = 20,
-                  passage_width: float = PASSAGE_WIDTH,
-                  library: ModelLibrary | None = None) -> FloorPlan:
-    """Furnish a typed floor as ``add_furniture`` does in a grammar (for rule authors).
-
-    Parameters
-    ----------
-    plan:
-        A typed floor, e.g. from :func:`cga.authoring.type_floor`.
-    rules:
-        The furniture table: a path, or the name of a shipped table such as
-        ``"furniture_house.csv"``.
-    seed:
-        Seed of the random stream; the same seed gives the same furniture.
-    units:
-        Metres per unit of the table's distances.
-    steering_iterations, clearance_tries:
-        As the operation's ``steeringIterations`` and ``clearanceTries``.
-    passage_width:
-        As the operation's ``passage_width``, in metres (not scaled by ``units``).
-    library:
-        The models; default: the shipped ones.
-
-    Returns
-    -------
-    FloorPlan
-        A copy with ``furniture`` and the messages about left-out items appended to
-        ``diagnostics``.
-
-    Raises
-    ------
-    ResourceNotFoundError, RuleTableError
-        The table or one of its models does not exist, or the table is malformed.
-    UsageError
-        ``passage_width`` is negative.
-    """
-    if passage_width < 0:
-        raise UsageError(f"passage_width must not be negative, got {passage_width:g}")
-    table = load_furniture_rules(resolve_resource(rules, "rules"))
-    return _furnish(plan, table, library or default_library(), np.random.default_rng(seed),
-                    units, steering_iterations, clearance_tries, passage_width)
-
-
-def _furnish(plan: FloorPlan, rules: FurnitureRules, library: ModelLibrary,
-             rng: np.random.Generator, units: float, steering_iterations: int,
-             clearance_tries: int, passage_width: float) -> FloorPlan:
+def furnish(plan: FloorPlan, rules: FurnitureRules, library: ModelLibrary,
+            rng: np.random.Generator, units: float, steering_iterations: int,
+            clearance_tries: int, passage_width: float) -> FloorPlan:
+    """``plan`` with furniture from a parsed table (every model must be in ``library``);
+    the operation and :func:`cga.authoring.furnish_floor` both call this."""
     models = _models(rules, library)
     furniture, diagnostics = furnish_plan(plan, rules.scaled(units), models, rng,
                                           steering_iterations=steering_iterations,

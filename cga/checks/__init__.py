@@ -11,18 +11,18 @@ and ``to_dict()`` for the scene file's ``checks`` section. See ``docs/checks.md`
 
 from __future__ import annotations
 
-from .navigability import (FloorReach, NavigabilityReport, Passage, RoomReach,
+from .navigability import (Bottleneck, FloorReach, NavigabilityReport, RoomReach,
                            check_floor_navigability, check_navigability)
 from .occupancy import Obstacle, OccupancyGrid, band_footprint, occupancy_grid
 from .physics import ItemPhysics, PhysicsReport, check_physics
 
 __all__ = [
+    "Bottleneck",
     "FloorReach",
     "ItemPhysics",
     "NavigabilityReport",
     "Obstacle",
     "OccupancyGrid",
-    "Passage",
     "PhysicsReport",
     "RoomReach",
     "band_footprint",

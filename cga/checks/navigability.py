@@ -49,7 +49,7 @@ from .occupancy import OccupancyGrid, occupancy_grid
 __all__ = [
     "FloorReach",
     "NavigabilityReport",
-    "Passage",
+    "Bottleneck",
     "RoomReach",
     "check_floor_navigability",
     "check_navigability",
@@ -60,7 +60,7 @@ _OPEN = 100.0
 
 
 @dataclass(frozen=True)
-class Passage:
+class Bottleneck:
     """The tightest point on the best path to a room.
 
     ``clearance`` is the distance (m) from that point to the nearest obstacle, so the
@@ -95,7 +95,7 @@ class RoomReach:
     type: str | None
     reachable: bool
     reachable_fraction: float
-    narrowest: Passage | None = None
+    narrowest: Bottleneck | None = None
     reasons: tuple[str, ...] = ()
     blocked_doors: tuple[int, ...] = ()
     blocking_items: tuple[str, ...] = ()
@@ -393,7 +393,7 @@ class _FloorCheck:
     # -- narrowest passages ------------------------------------------------------------
 
     def _narrowest(self, cell: tuple[int, int], reached: np.ndarray,
-                   start_room: int | None) -> dict[int, Passage]:
+                   start_room: int | None) -> dict[int, Bottleneck]:
         """The bottleneck of the widest path from the start to each reachable room.
 
         The widest (maximin) paths between all cells are the paths of a maximum spanning
@@ -430,7 +430,7 @@ class _FloorCheck:
             best = inside[int(np.argmax(least[inside]))]
             row, col = divmod(int(flat[where[best]]), shape[1])
             x, z = self.grid.cell_to_world(row, col)
-            out[rid] = Passage(clearance=float(least[best]), at=(x, z),
+            out[rid] = Bottleneck(clearance=float(least[best]), at=(x, z),
                                door=self._door_at(x, z), room=self._room_at(row, col))
         return out
 

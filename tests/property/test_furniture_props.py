@@ -17,7 +17,7 @@ from shapely.ops import unary_union
 
 from cga.authoring import floor_from_rectangles, type_floor
 from cga.errors import NoSolutionError
-from cga.operations.add_furniture import furnish_floor
+from cga.authoring import furnish_floor
 from cga.operations.furniture.library import default_library
 
 from furniture_checks import furniture_violations

@@ -11,7 +11,8 @@ from furniture_checks import furniture_violations
 
 from cga.errors import DerivationError, RuleTableError
 from cga.evaluator import derive
-from cga.operations.add_furniture import LIBRARY_CACHE_KEY, AddFurniture, furnish_floor
+from cga.authoring import furnish_floor
+from cga.operations.add_furniture import LIBRARY_CACHE_KEY, AddFurniture
 from cga.operation import OperationContext
 from cga.parser import parse
 from cga.resources import resolve_resource

@@ -10,7 +10,7 @@ from shapely.ops import unary_union
 from furniture_checks import furniture_violations, passage_violations
 
 from cga.errors import DerivationError, UsageError
-from cga.operations.add_furniture import furnish_floor
+from cga.authoring import furnish_floor
 from cga.operations.furniture.clearance import OpeningStrip
 from cga.operations.furniture.layout import ItemSpec, Layout, Pose
 from cga.operations.furniture.passage import Blockage, Passage
