@@ -7,7 +7,7 @@ absolute Windows paths (``"D:\\RoomsProjekt\\...\\TestConfig"``, even without th
 1. the path as written, relative to the grammar's folder;
 2. the path as written, if it is absolute;
 3. the path as written (also with the kind's suffix added) in the grammar's folder and
-   inside the shipped data package (``cga.rules`` for rule tables, ``cga.models`` for
+   inside the shipped data package (``cga.rules`` for rule tables, ``cga.furniture_models`` for
    models), matching case-insensitively when no exact name exists;
 4. by name: the trailing components of the path (split on both ``\\`` and ``/``),
    longest first, in the grammar's folder and then in the shipped package, trying the
@@ -58,7 +58,7 @@ class ResourceKind:
 
 RESOURCE_KINDS: dict[str, ResourceKind] = {
     "rules": ResourceKind("rule table", "cga.rules", ".csv"),
-    "model": ResourceKind("model", "cga.models", ".obj"),
+    "model": ResourceKind("model", "cga.furniture_models", ".obj"),
     "file": ResourceKind("file", None, None),
 }
 """Kinds :func:`resolve_resource` understands (``kind`` argument)."""
@@ -148,7 +148,7 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
         The path as written in the grammar (any OS's separators), or a Path.
     kind:
         ``"rules"`` (rule tables, shipped in ``cga.rules``), ``"model"`` (furniture
-        models, shipped in ``cga.models``) or ``"file"`` (no shipped fallback).
+        models, shipped in ``cga.furniture_models``) or ``"file"`` (no shipped fallback).
     base_dir:
         The grammar's folder; relative paths are looked up there first. None means
         the current working directory.

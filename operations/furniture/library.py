@@ -2,7 +2,7 @@
 
 ``add_furniture`` needs each model's size, the physics check its convex parts and mass,
 the exporters its coloured mesh. All of them ask a :class:`ModelLibrary`, which searches
-the user's folders before the models shipped in ``cga.models`` and loads each file once.
+the user's folders before the models shipped in ``cga.furniture_models`` and loads each file once.
 
 Model files (DESIGN §8) are Wavefront OBJ in metres, y up, front toward −z, origin at the
 centre of the footprint on the floor. Each OBJ group (``g``) or object (``o``) is one
@@ -385,9 +385,9 @@ def grammar_model_dirs(grammar_file: Path) -> list[Path]:
 def default_library(extra_dirs: Iterable[Path] = (), sandbox: "Sandbox | None" = None
                     ) -> ModelLibrary:
     """A library searching ``extra_dirs`` (in order) and then the shipped models
-    (package ``cga.models``, found with :func:`cga.resources.shipped_dir`), reading only
-    inside ``sandbox`` when one is given."""
-    shipped = shipped_dir("cga.models")
+    (package ``cga.furniture_models``, found with :func:`cga.resources.shipped_dir`),
+    reading only inside ``sandbox`` when one is given."""
+    shipped = shipped_dir("cga.furniture_models")
     return ModelLibrary([*map(Path, extra_dirs), *([shipped] if shipped else [])], sandbox)
 
 

@@ -38,7 +38,7 @@ def test_generating_twice_gives_identical_bytes(generator, tmp_path):
 
 def test_shipped_models_are_exactly_what_the_script_generates(generator, tmp_path):
     generator.main(["--out", str(tmp_path)])
-    shipped = shipped_dir("cga.models")
+    shipped = shipped_dir("cga.furniture_models")
     generated = {p.name: p.read_bytes() for p in tmp_path.glob("*.obj")}
     on_disk = {p.name: p.read_bytes() for p in shipped.glob("*.obj")}
     assert sorted(on_disk) == sorted(generated)

@@ -15,7 +15,7 @@ import trimesh
 
 from cga.resources import shipped_dir
 
-MODELS_DIR = shipped_dir("cga.models")
+MODELS_DIR = shipped_dir("cga.furniture_models")
 
 REQUIRED = (
     "bed", "doublebed", "nightstand", "wardrobe", "dresser", "desk", "officechair", "chair",

@@ -21,7 +21,7 @@ from cga.operations.furniture.library import (
 )
 from cga.resources import shipped_dir
 
-SHIPPED = shipped_dir("cga.models")
+SHIPPED = shipped_dir("cga.furniture_models")
 
 
 def write_obj(path: Path, meshes: list[trimesh.Trimesh], header: str = "",

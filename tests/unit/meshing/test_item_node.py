@@ -11,7 +11,7 @@ from cga.meshing.items import item_node
 from cga.operations.furniture.library import ModelLibrary
 from cga.resources import shipped_dir
 
-LIBRARY = ModelLibrary([shipped_dir("cga.models")])
+LIBRARY = ModelLibrary([shipped_dir("cga.furniture_models")])
 ELEVATION, SLAB = 3.0, 0.2
 FLOOR_Y = ELEVATION + SLAB
 
