@@ -158,23 +158,16 @@ class SyntaxErrorBuilder:
         return Span(self.loc.file, last.end_line, last.end_column)
 
 
+_TOKEN_WORDS = {"NAME": "name `{}`", "PREDECESSOR": "the rule `{} -->`",
+                "ASSIGN_NAME": "the assignment `{} =`", "NUMBER": "number `{}`",
+                "STRING": "string {}", "PERCENT": "percentage `{}`"}
+"""How a token met where it does not belong is named ({} is its text)."""
+
+
 def _describe_token(token: Token) -> str:
-    kind, value = token.type, str(token)
-    if kind == "$END":
+    if token.type == "$END":
         return "the end of the file"
-    if kind == "NAME":
-        return f"name `{value}`"
-    if kind == "PREDECESSOR":
-        return f"the rule `{value} -->`"
-    if kind == "ASSIGN_NAME":
-        return f"the assignment `{value} =`"
-    if kind == "NUMBER":
-        return f"number `{value}`"
-    if kind == "STRING":
-        return f"string {value}"
-    if kind == "PERCENT":
-        return f"percentage `{value}`"
-    return f"`{value}`"
+    return _TOKEN_WORDS.get(token.type, "`{}`").format(str(token))
 
 
 def _readable(expected: Iterable[str]) -> str:
