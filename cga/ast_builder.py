@@ -79,7 +79,7 @@ class AstBuilder(Transformer):
         self.file = file
         self.loc = Locator(text, file)
 
-    def _error(self, message: str, span: Span, hint: str | None = None) -> NoReturn:
+    def _error(self, message: str, span: Span | None, hint: str | None = None) -> NoReturn:
         raise GrammarSyntaxError(message, span, hint=hint)
 
     # ---- expressions ------------------------------------------------------------
@@ -321,6 +321,7 @@ def _assemble(statements: list[_Statement], file: str, loc: Locator) -> ast.Gram
     variables: dict[str, ast.Assignment] = {}
     units: ast.Assignment | None = None
     lot: _Statement | None = None
+    lot_call: ast.Call | None = None
     previous: _Statement | None = None
     for statement in statements:
         if previous is not None and not previous.has_semicolon \
@@ -366,7 +367,7 @@ def _assemble(statements: list[_Statement], file: str, loc: Locator) -> ast.Gram
             if lot is not None:
                 raise GrammarSyntaxError(
                     f"`Lot:` already given at line {lot.span.line}", statement.span)
-            lot = statement
+            lot, lot_call = statement, node
     if rules_header is None:
         raise GrammarSyntaxError(
             "the grammar has no `Rules:` section", loc.at_offset(0),
@@ -380,5 +381,5 @@ def _assemble(statements: list[_Statement], file: str, loc: Locator) -> ast.Gram
         rules=tuple(rules.values()),
         variables=tuple(variables.values()),
         units=units.value if units is not None else None,
-        lot=lot.node if lot is not None else None,
+        lot=lot_call,
     )

@@ -22,6 +22,7 @@ from shapely.geometry import Polygon
 
 from .errors import ExportError, NoSolutionError, SourceError, UsageError
 from .evaluator import DEFAULT_MAX_DEPTH, Evaluator, check_max_depth
+from .registry import OperationRegistry
 from .scene import Scene
 
 __all__ = ["MAX_ROBOT_RADIUS", "STAGES", "build", "check_grammar", "default_out_dir", "run_checks",
@@ -179,7 +180,8 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
           units: float | None = None, out_dir: str | Path | None = None,
           formats: Sequence[str] = ("glb",), physics: bool = True, robot_radius: float = 0.25,
           strict: bool = False, quiet: bool = False, max_depth: int = DEFAULT_MAX_DEPTH,
-          operations: Any = None, allow_paths: Sequence[str | Path] = ()) -> Scene:
+          operations: OperationRegistry | None = None,
+          allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Build a grammar: derive it, mesh it, check it and write the requested files.
 
     Parameters

@@ -13,7 +13,22 @@ from lark import Token
 
 from .errors import Span
 
-__all__ = ["Locator"]
+__all__ = ["Locator", "start_of", "end_of"]
+
+
+def start_of(token: Token) -> tuple[int, int]:
+    """``(line, column)`` where a lexed token starts (lark types positions as optional:
+    only hand-made tokens lack them)."""
+    if token.line is None or token.column is None:
+        raise ValueError(f"token {token!r} has no position")
+    return token.line, token.column
+
+
+def end_of(token: Token) -> tuple[int, int]:
+    """``(line, column)`` just after a lexed token."""
+    if token.end_line is None or token.end_column is None:
+        raise ValueError(f"token {token!r} has no position")
+    return token.end_line, token.end_column
 
 
 class Locator:
@@ -33,7 +48,7 @@ class Locator:
         return Span(self.file, line, column, max(1, length))
 
     def token(self, token: Token) -> Span:
-        return Span(self.file, token.line, token.column, max(1, len(token)))
+        return Span(self.file, *start_of(token), max(1, len(token)))
 
     def meta(self, meta) -> Span:
         return Span(self.file, meta.line, meta.column, max(1, meta.end_pos - meta.start_pos))

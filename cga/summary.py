@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from .pipeline import STAGES
 from .model import FloorPlan
@@ -99,8 +99,10 @@ def print_summary(scene: Scene, *, out_dir: str | Path | None = None, console: A
                       f"{floor['doors']} doors, {floor['windows']} windows, "
                       f"{floor['items']} items", highlight=False)
         table = Table()
-        for column, justify in (("room", "right"), ("type", "left"), ("area m²", "right"),
-                                ("doors", "right"), ("items", "right")):
+        columns: tuple[tuple[str, Literal["left", "right"]], ...] = (
+            ("room", "right"), ("type", "left"), ("area m²", "right"), ("doors", "right"),
+            ("items", "right"))
+        for column, justify in columns:
             table.add_column(column, justify=justify)
         for room in floor["rooms"]:
             table.add_row(str(room["id"]), escape(room["type"] or "—"), f"{room['area_m2']:.1f}",

@@ -12,7 +12,7 @@ from lark import Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 
 from .errors import GrammarSyntaxError, Span
-from .source_positions import Locator
+from .source_positions import Locator, end_of, start_of
 
 __all__ = ["SyntaxErrorBuilder"]
 
@@ -127,17 +127,17 @@ class SyntaxErrorBuilder:
         if unclosed is None:
             if isinstance(previous, Token) and previous.type == "NAME" \
                     and token.type != "LPAR" \
-                    and self.loc.first_on_line(previous.line, previous.column):
+                    and self.loc.first_on_line(*start_of(previous)):
                 return self._missing_after_name(previous, _current_section(stack))
             if token.type == "NAME" and expected & {"PREDECESSOR", "ASSIGN_NAME"} \
-                    and self.loc.first_on_line(token.line, token.column):
+                    and self.loc.first_on_line(*start_of(token)):
                 return self._missing_after_name(token, _current_section(stack))
 
         return GrammarSyntaxError(f"unexpected {found}; expected {_readable(expected)}",
                                   at_token, hint=_hint(token.type, expected))
 
     def _missing_after_name(self, name: Token, section: str | None) -> GrammarSyntaxError:
-        offset = self.loc.offset(name.line, name.column) + len(name)
+        offset = self.loc.offset(*start_of(name)) + len(name)
         while offset < len(self.loc.text) and self.loc.text[offset] in " \t":
             offset += 1
         span = self.loc.at_offset(offset)
@@ -155,7 +155,7 @@ class SyntaxErrorBuilder:
         last = _last_token(stack)
         if last is None:
             return Span(self.loc.file, 1, 1)
-        return Span(self.loc.file, last.end_line, last.end_column)
+        return Span(self.loc.file, *end_of(last))
 
 
 _TOKEN_WORDS = {"NAME": "name `{}`", "PREDECESSOR": "the rule `{} -->`",

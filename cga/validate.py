@@ -15,8 +15,9 @@ check. All problems are reported, not only the first.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
+from typing import Any, TypeVar
 
 from . import ast
 from .binding import bind_arguments
@@ -33,6 +34,8 @@ from cga.registry import OperationRegistry, UnknownOperation
 
 __all__ = ["check_grammar", "check_file"]
 
+_T = TypeVar("_T")
+
 
 class _Checker:
     def __init__(self, grammar: ast.Grammar, base_dir: Path, operations: OperationRegistry,
@@ -45,7 +48,7 @@ class _Checker:
         self.cache: dict[str, object] = {}
         self.units = 1.0
 
-    def attempt(self, check, *args) -> object:
+    def attempt(self, check: Callable[..., _T], *args: Any) -> _T | None:
         """Run one check; record a user error and carry on."""
         try:
             return check(*args)
@@ -69,6 +72,8 @@ class _Checker:
 
     def check_lot(self, variables: dict[str, Value]) -> None:
         call = self.grammar.lot
+        if call is None:
+            return
         values = [evaluate(arg, Namespace(variables=variables)) for arg in call.args]
         if UNKNOWN not in values:
             lot_from_call(call.name, values, call.span, self.units)
@@ -100,7 +105,7 @@ class _Checker:
         check_successors(operation, step, rule)
         for part in step.parts:
             self.attempt(evaluate, part.size, ns)
-        values = []
+        values: list[Value] = []
         for arg in call.args:
             value = self.attempt(evaluate, arg.value, ns)
             values.append(UNKNOWN if value is None else value)

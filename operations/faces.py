@@ -48,15 +48,19 @@ def face_from_polygon(polygon: Polygon, scope: Scope, kind: str) -> tuple[Face, 
     vertices = origin + np.outer(ring[:, 0], x) + np.outer(ring[:, 1], y)
     minu, minv, maxu, maxv = polygon.bounds
     new_origin = origin + minu * x + minv * y
-    new_scope = Scope(origin=tuple(float(c) for c in new_origin), axes=scope.axes,
+    new_scope = Scope(origin=_triple(new_origin), axes=scope.axes,
                       size=(maxu - minu, maxv - minv, 0.0))
-    return Face(vertices=tuple(tuple(float(c) for c in v) for v in vertices), kind=kind), new_scope
+    return Face(vertices=tuple(_triple(v) for v in vertices), kind=kind), new_scope
+
+
+def _triple(v: np.ndarray) -> tuple[float, float, float]:
+    """A 3-vector as plain floats (shapes hold tuples, not arrays)."""
+    return (float(v[0]), float(v[1]), float(v[2]))
 
 
 def _scope(origin: np.ndarray, x: np.ndarray, z: np.ndarray, size: tuple[float, float]) -> Scope:
     y = np.cross(z, x)
-    return Scope(origin=tuple(float(c) for c in origin),
-                 axes=tuple(tuple(float(c) for c in axis) for axis in (x, y, z)),
+    return Scope(origin=_triple(origin), axes=tuple(_triple(axis) for axis in (x, y, z)),
                  size=(float(size[0]), float(size[1]), 0.0))
 
 
@@ -82,7 +86,7 @@ def side_faces(mass: Mass) -> list[tuple[Face, Scope]]:
             along = (a0 - b0) / length
             outward = np.cross(along, _UP)
             vertices = (b0, a0, a1, b1)
-            face = Face(vertices=tuple(tuple(float(c) for c in v) for v in vertices), kind="side")
+            face = Face(vertices=tuple(_triple(v) for v in vertices), kind="side")
             faces.append((face, _scope(b0, along, outward, (length, top - bottom))))
     return faces
 

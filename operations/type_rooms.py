@@ -37,13 +37,15 @@ from .roomtyping.backtrack import RoomSet
 from .roomtyping.door_states import DOOR_STATE_CHOICES, with_door_states
 from .roomtyping.doors import (Interval, clear_windows, door_centre, door_opening,
                                door_spans, front_door_site, make_door)
-from .roomtyping.room_graph import (DoorSites, door_sites, reachability_pairs, room_graph,
+from .roomtyping.room_graph import (DoorSites, Pair, door_sites, reachability_pairs, room_graph,
                                     rule_pairs)
 from .roomtyping.rules import RuleTable, load_rule_table
 
-__all__ = ["DOOR_POSITIONS", "TypeRooms", "type_plan"]
+__all__ = ["DOOR_POSITIONS", "DoorPosition", "TypeRooms", "type_plan"]
 
-DOOR_POSITIONS = ("center", "random")
+DoorPosition = Literal["center", "random"]
+
+DOOR_POSITIONS: tuple[DoorPosition, ...] = ("center", "random")
 """Values of ``door_position``: doors centred in their free stretch of wall, or anywhere
 in it (keeping the margins)."""
 
@@ -52,7 +54,7 @@ _STAGE = "type_rooms"
 
 def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
               units: float = 1.0, strict: bool = False,
-              door_position: Literal["center", "random"] = "random",
+              door_position: DoorPosition = "random",
               door_state: str = "closed") -> FloorPlan:
     """Type the rooms of ``plan`` and give it a room graph and doors.
 
@@ -120,7 +122,9 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     if front_room is not None:
         windows = _add_front_door(doors, walls, windows, typed, sites.outer[front_room],
                                   front_room, rng, door_position, notes)
-    for reason, chosen in (("rule", pairs), ("reachability", extra)):
+    batches: tuple[tuple[Literal["rule", "reachability"], list[Pair]], ...] = (
+        ("rule", list(pairs)), ("reachability", list(extra)))
+    for reason, chosen in batches:
         for pair in chosen:
             wall, interval = sites.inner[pair][0]
             centre = door_centre(interval, width, rng, door_position)
@@ -136,7 +140,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
 
 def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Window, ...],
                     plan: FloorPlan, candidates: Sequence[tuple[Wall, Interval]], room: int,
-                    rng: np.random.Generator, door_position: Literal["center", "random"],
+                    rng: np.random.Generator, door_position: DoorPosition,
                     notes: list[Diagnostic]) -> tuple[Window, ...]:
     """Put the front door in ``room``'s outer wall; returns the windows left."""
     width = plan.settings.door_width
@@ -168,8 +172,8 @@ def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, sites: DoorSites,
     if outside is not None and outside.type in typing.mandatory:
         placed = plan.rooms[typing.mandatory[outside.type]].id
     by_size = sorted(plan.rooms, key=lambda r: (-r.area, r.id))
-    notes = []
-    if wants_front_door:
+    notes: list[Diagnostic] = []
+    if wants_front_door and outside is not None:
         if placed is not None:
             return placed, placed, notes
         candidates = [r for r in by_size if r.id in sites.outer]
@@ -268,7 +272,8 @@ class TypeRooms(Operation):
             raise DerivationError("type_rooms needs a floor made by make_floor",
                                   hint="apply make_floor(...) to this shape first")
         self.check_values(args, ctx.units)
-        position = str(args["door_position"]).lower()
+        written = str(args["door_position"]).lower()
+        position = next(p for p in DOOR_POSITIONS if p == written)  # check_values refused others
         state = str(args["door_state"]).lower()
         table = _cached_table(ctx.resolve(args["rules"], "rules"), ctx.cache)
         plan = type_plan(shape.plan, table, ctx.rng, units=ctx.units,

@@ -14,6 +14,7 @@ writes too). :func:`obj_text` and :func:`obj_objects` write and read that format
 from __future__ import annotations
 
 import contextlib
+import importlib
 import os
 import sys
 from collections.abc import Iterator
@@ -49,8 +50,8 @@ def pybullet() -> ModuleType:
     """The ``pybullet`` module, imported without its build-time banner."""
     module = sys.modules.get("pybullet")
     if module is None:
-        with quiet_output():
-            import pybullet as module  # noqa: PLC0415 - imported on first use, quietly
+        with quiet_output():  # imported on first use, quietly
+            module = importlib.import_module("pybullet")
     return module
 
 

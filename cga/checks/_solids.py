@@ -68,7 +68,7 @@ def convex_pieces(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh] | None:
     for axis in (0, 2, 1):
         normal = tuple(1.0 if k == axis else 0.0 for k in range(3))
         for value in np.unique(vertices[:, axis]):
-            cut = []
+            cut: list[manifold3d.Manifold] = []
             for piece in pieces:
                 box = piece.bounding_box()
                 if box[axis] + 1e-9 < value < box[axis + 3] - 1e-9 and not _is_convex(piece):

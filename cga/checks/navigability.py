@@ -361,7 +361,7 @@ class _FloorCheck:
             kind, which = "largest_room", "the largest room"
         where = np.where(self.masks[room.id], self.clear, -np.inf)
         row, col = np.unravel_index(int(np.argmax(where)), where.shape)
-        return (kind, self.grid.cell_to_world(row, col), room.id,
+        return (kind, self.grid.cell_to_world(int(row), int(col)), room.id,
                 f"{why}: the model has no stair geometry, so the robot starts in {which} "
                 f"(room {room.id}, {room.area:.1f} m²), at its most open point")
 

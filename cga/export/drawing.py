@@ -304,7 +304,8 @@ class _PngPainter:
         # draw horizontally on a scratch image around the anchor, turn it, paste it back
         left, top, right, bottom = font.getbbox(item.text, anchor=anchor)
         pad = 2
-        scratch = Image.new("RGBA", (right - left + 2 * pad, bottom - top + 2 * pad), (0, 0, 0, 0))
+        size = (int(right - left) + 2 * pad, int(bottom - top) + 2 * pad)  # FreeType: whole pixels
+        scratch = Image.new("RGBA", size, (0, 0, 0, 0))
         ImageDraw.Draw(scratch).text((pad - left, pad - top), item.text, font=font,
                                      fill=_rgba(item.fill), anchor=anchor)
         turned = scratch.rotate(90, expand=True)

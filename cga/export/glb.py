@@ -86,7 +86,7 @@ def _local_mesh(node: SceneNode, pivot: np.ndarray) -> Any:
 
     source = node.mesh
     visual = source.visual
-    if visual.kind is None:
+    if visual is None or visual.kind is None:
         r, g, b = node_color(node.kind)
         material = PBRMaterial(name=node.kind, baseColorFactor=[r, g, b, 1.0],
                                metallicFactor=0.0, roughnessFactor=0.9)

@@ -205,6 +205,7 @@ def _draw_item_name(drawing: Drawing, paper: _Paper, item: FurnitureItem,
             break
     vertical = text_width(label, size) > across and along > across and not item.non_collision
     cx, cy = paper.point(*footprint.centroid.coords[0])
+    angle: Literal[0, 90]
     if item.non_collision:  # rugs: name along the bottom edge, clear of what stands on them
         position, angle = (cx, paper.point(min_x, max_z)[1] - 3), 0
     elif vertical:
@@ -367,6 +368,7 @@ def _entrance_marker(plan: FloorPlan, scale: float) -> _Entrance | None:
     arrow = Polygon([apex, base + u * 0.3, base - u * 0.3])
     width = text_width(_ENTRANCE_TEXT, _ENTRANCE_SIZE, bold=True) / scale
     height = _ENTRANCE_SIZE / scale
+    anchor: Literal["start", "middle", "end"]
     if abs(outward[1]) > 0.5:  # north or south wall: centred beyond the arrowhead
         x, z = position + outward * 0.9
         if outward[1] > 0:
@@ -375,7 +377,10 @@ def _entrance_marker(plan: FloorPlan, scale: float) -> _Entrance | None:
     else:  # east or west wall: beside the arrowhead, reading away from the wall
         x, z = position + outward * 0.85
         z += height / 2
-        anchor, left = ("start", x) if outward[0] > 0 else ("end", x - width)
+        if outward[0] > 0:
+            anchor, left = "start", x
+        else:
+            anchor, left = "end", x - width
     box = Polygon.from_bounds(left, z - height, left + width, z + 0.2 * height)
     return _Entrance(arrow, (float(x), float(z)), anchor, box)
 

@@ -62,8 +62,10 @@ def _cut(mesh: trimesh.Trimesh, height: float) -> trimesh.Trimesh | None:
 
 
 def _face_colors(node: SceneNode, mesh: trimesh.Trimesh) -> np.ndarray:
-    if mesh.visual.kind is not None and len(mesh.visual.face_colors) == len(mesh.faces):
-        return np.asarray(mesh.visual.face_colors[:, :3], dtype=float) / 255.0
+    visual = mesh.visual
+    if isinstance(visual, trimesh.visual.ColorVisuals) and visual.kind is not None \
+            and len(visual.face_colors) == len(mesh.faces):
+        return np.asarray(visual.face_colors[:, :3], dtype=float) / 255.0
     return np.tile(node_color(node.kind), (len(mesh.faces), 1))
 
 
@@ -86,7 +88,7 @@ def _storeys(scene: Scene, nodes: Sequence[SceneNode]) -> list[tuple[list[SceneN
     """Nodes grouped per storey (by their ``floorN/`` path prefix) with the cut height."""
     if not scene.floors:
         return [(list(nodes), None)]
-    groups = []
+    groups: list[tuple[list[SceneNode], float | None]] = []
     for plan in scene.floors:
         prefix = f"floor{plan.index}/"
         members = [n for n in nodes if n.path.startswith(prefix)]
@@ -167,7 +169,7 @@ def render_view(scene: Scene, nodes: Sequence[SceneNode], *, width: int = 1400,
         offset_x += (x1 - x0) + gap
 
     canvas = Image.fromarray(color)
-    image = canvas.resize((width, canvas.height // 2), Image.LANCZOS)
+    image = canvas.resize((width, canvas.height // 2), Image.Resampling.LANCZOS)
     out = io.BytesIO()
     image.save(out, format="PNG", optimize=True)
     return out.getvalue()

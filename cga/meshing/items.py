@@ -53,7 +53,9 @@ def _posed(mesh: trimesh.Trimesh, matrix: np.ndarray) -> trimesh.Trimesh:
     winding.
     """
     return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
-                           faces=mesh.faces.copy(), visual=mesh.visual.copy(), process=False)
+                           faces=mesh.faces.copy(),
+                           visual=mesh.visual.copy() if mesh.visual is not None else None,
+                           process=False)
 
 
 def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> SceneNode:

@@ -62,7 +62,8 @@ def plan_from_rectangles(rectangles: Sequence[Rectangle], *, settings: FloorSett
     O(n²) in the number of rectangles (each side is subdivided at every corner lying
     on it).
     """
-    rects = [tuple(float(v) for v in r) for r in rectangles]
+    rects: list[Rectangle] = [(float(x0), float(z0), float(x1), float(z1))
+                              for x0, z0, x1, z1 in rectangles]
     if not rects:
         raise UsageError("plan_from_rectangles needs at least one rectangle")
     _check_rectangles(rects, settings.wall_thickness)

@@ -30,6 +30,7 @@ share an edge and a wall item may stand flush against its wall.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -190,8 +191,8 @@ class Layout:
         The room's passage rule; None: none.
     """
 
-    def __init__(self, interior: Polygon, keepouts: list[Keepout] = (),
-                 windows: list[OpeningStrip] = (), passage: Passage | None = None):
+    def __init__(self, interior: Polygon, keepouts: Sequence[Keepout] = (),
+                 windows: Sequence[OpeningStrip] = (), passage: Passage | None = None):
         self.interior = interior
         self._static = [_Entry("wall", "a wall", piece, _rectangle(piece))
                         for piece in _outside_pieces(interior)]

@@ -25,7 +25,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 import trimesh
@@ -286,7 +286,7 @@ def load_model(path: Path) -> FurnitureModel:
     parts = [m for m in meshes if isinstance(m, trimesh.Trimesh) and len(m.faces)]
     if not parts:
         raise ModelFileError(path, "the file has no faces")
-    mesh = trimesh.util.concatenate(parts)
+    mesh = cast(trimesh.Trimesh, trimesh.util.concatenate(parts))  # meshes join to a mesh
     if not np.isfinite(mesh.vertices).all():
         raise ModelFileError(path, "a vertex has a coordinate that is not a finite number")
     lo, hi = mesh.bounds

@@ -107,7 +107,7 @@ class Passage:
         meets = _meets(pieces, zones)
         used = np.flatnonzero(meets.any(axis=0))  # doors a robot can use in the empty room
         meets = meets[:, used]
-        self.labels = [doors[k].label for k in used]
+        self.labels = [doors[int(k)].label for k in used]
         self.approaches = zones[used]
         self.groups = _groups(meets)
         self.floor = shapely.union_all(pieces[meets.any(axis=1)])

@@ -387,7 +387,7 @@ class Placer:
                     if value == nearest:
                         if self._conflict(spec, pose) is None:
                             yield pose
-                    elif abs(value - nearest) > 1e-6:
+                    elif nearest is None or abs(value - nearest) > 1e-6:
                         later.append(pose)
             for pose in later:
                 if self._conflict(spec, pose) is None:

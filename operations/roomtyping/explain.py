@@ -93,11 +93,11 @@ def _no_room(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec,
     free = [i for i in range(len(rooms)) if i not in type_at]
     if not free:
         return f"no free room is left for {rule.type}"
-    door = rule.outside and rooms.entrances is not None
+    entrances = rooms.entrances if rule.outside else None
     fitting = [i for i in free if _fits(rooms, rule, i)]
     if not fitting:
-        if door:
-            doors = [i for i in free if i in rooms.entrances]
+        if entrances is not None:
+            doors = [i for i in free if i in entrances]
             if not doors:
                 return (f"{rule.type} gets the front door, but no free room has an outer "
                         "wall long enough for a door")
