@@ -4,7 +4,7 @@ The parser (``cga.parser``) is the only module that knows about lark; it turns a
 tree into these nodes. The evaluator works on these nodes only. Every node carries a
 :class:`~cga.errors.Span` so any later error can point at the text that caused it.
 
-Shape of a grammar (DESIGN §4)::
+Shape of a grammar (docs/language.md)::
 
     Grammar
       units: Expr | None          `units = 10;`
@@ -23,17 +23,20 @@ Shape of a grammar (DESIGN §4)::
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Union
+from typing import Literal, Union
 
 from .errors import Span
 
 __all__ = [
     "Number", "String", "Name", "Attribute", "RandomRange", "TupleExpr", "BinOp",
-    "UnaryOp", "Call", "Expr", "Arg", "OpCall", "Symbol", "SplitPart", "Step",
+    "UnaryOp", "Call", "Expr", "Arg", "OpCall", "Symbol", "SplitMode", "SplitPart", "Step",
     "Sequence", "Branch", "Stochastic", "Conditional", "Body", "Rule", "Assignment",
     "Grammar",
 ]
 
+
+SplitMode = Literal["absolute", "floating", "relative"]
+"""How a split part's size counts: as written, ``~`` floating, ``'`` relative."""
 
 @dataclass(frozen=True)
 class Number:
@@ -141,7 +144,7 @@ class Symbol:
 class SplitPart:
     """One ``size : Symbol`` entry of a split; ``mode`` is absolute, floating or relative."""
 
-    mode: str  # "absolute" | "floating" ("~") | "relative" ("'")
+    mode: SplitMode
     size: Expr
     successor: Symbol
     span: Span = field(compare=False)

@@ -15,7 +15,7 @@ import math
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import NoReturn
+from typing import Literal, NoReturn
 
 from lark import Transformer, v_args
 
@@ -46,7 +46,7 @@ class _SplitGroup:
 
 @dataclass(frozen=True)
 class _Guard:
-    kind: str  # "percent" | "case" | "else"
+    kind: Literal["percent", "case", "else"]
     value: ast.Expr | None
     span: Span
 
@@ -61,7 +61,8 @@ class _Statement:
     has_semicolon: bool = True
 
 
-_SPLIT_MODES = {None: "absolute", "~": "floating", "'": "relative"}
+_SPLIT_MODES: dict[str | None, ast.SplitMode] = {None: "absolute", "~": "floating",
+                                                  "'": "relative"}
 _PERCENT_TOLERANCE = 1e-9
 
 

@@ -133,7 +133,7 @@ class SourceError(CGAError):
 
 
 class GrammarSyntaxError(SourceError):
-    """The grammar text does not follow the language (DESIGN §4)."""
+    """The grammar text does not follow the language (docs/language.md)."""
 
 
 class BudgetError(SourceError):

@@ -4,7 +4,7 @@ The evaluator works on :mod:`cga.ast` nodes (never on parse trees) and knows not
 geometry: operations do the geometry, looked up by name in a per-evaluator copy of the
 :class:`~cga.registry.OperationRegistry` (a user may register operations of their own).
 
-Derivation (DESIGN §4):
+Derivation (docs/language.md):
 
 * The start symbol is ``Lot`` if a rule for it exists, else the first rule's predecessor.
   The root shape is the lot: a :class:`~cga.shape.Mass` of height 0.
@@ -519,7 +519,8 @@ class Evaluator:
             raise DerivationError(f"unknown operation '{call.name}'", call.span,
                                   hint=hint) from None
 
-    def _split_parts(self, step: ast.Step, ns: Namespace) -> list[tuple[str, float, int]]:
+    def _split_parts(self, step: ast.Step, ns: Namespace
+                     ) -> list[tuple[ast.SplitMode, float, int]]:
         parts = []
         for index, part in enumerate(step.parts):
             value = evaluate(part.size, ns)

@@ -8,8 +8,9 @@ derivation can know).
 
 Values are ``float``, ``bool``, ``str`` or ``tuple`` of values. Numbers are floats even
 when written as integers; operations that want counts convert them (``cga.binding``).
-Shape attributes are reported in grammar units (DESIGN §3): ``scope.sx``, ``scope.sy``,
-``scope.sz``, ``scope.tx``, ``scope.ty``, ``scope.tz``, ``area``, ``index``, ``floor``.
+Shape attributes are reported in grammar units (docs/architecture.md, "Units and frames"):
+``scope.sx``, ``scope.sy``, ``scope.sz``, ``scope.tx``, ``scope.ty``, ``scope.tz``,
+``area``, ``index``, ``floor``.
 """
 
 from __future__ import annotations

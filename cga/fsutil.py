@@ -1,6 +1,6 @@
 """Atomic file output, so an interrupted or failed build never leaves half-written files.
 
-Two helpers (DESIGN §10, "files are written atomically"):
+Two helpers (docs/outputs.md: "files are written atomically"):
 
 * :func:`atomic_write` writes one file: the bytes go to a temporary file in the same
   folder, are flushed to disk, and the temporary file is renamed over the target with

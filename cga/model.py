@@ -4,7 +4,7 @@
 returns a copy with room types, a room graph and doors, ``add_furniture`` returns a copy
 with furniture. Checks and exporters only read these objects (data flows one way).
 
-Frames and conventions (DESIGN §3):
+Frames and conventions (docs/architecture.md, "Units and frames"):
 
 * Plan coordinates are world ``(x, z)`` in metres; ``y`` is up.
 * A room's ``polygon`` is bounded by wall centre lines (inner walls) and the footprint
@@ -185,7 +185,7 @@ class Room:
     type: str | None = None
     circulation: bool = False
     """True for space whose job is to connect (hall, corridor, landing, stair core:
-    DESIGN §11): drawn as circulation, never furnished as a private room, and where a
+    docs/room_typing.md): drawn as circulation, never furnished as a private room, and where a
     stair core may stand."""
 
     @property

@@ -1,5 +1,5 @@
-"""The build pipeline: grammar file → Scene → checks → files (DESIGN §10, STYLE "data flows
-one way").
+"""The build pipeline: grammar file → Scene → checks → files (docs/architecture.md,
+"Stages and the data between them").
 
 ``parse → derive → Scene → scene nodes (meshes) → checks → exporters``. Every stage is
 timed into ``scene.timings`` (``parse``, ``derive`` and, inside it, each operation by
@@ -38,7 +38,7 @@ navigability raster grows with the radius (1e6 asked for petabytes)."""
 
 
 def default_out_dir(name: str) -> Path:
-    """``out/<name>`` in the working directory (DESIGN §10)."""
+    """``out/<name>`` in the working directory (docs/outputs.md)."""
     return Path("out") / name
 
 

@@ -1,7 +1,8 @@
 """Random streams keyed by the build seed and a name, so builds are reproducible and local.
 
-DESIGN §4: "Each shape draws from its own stream derived from (seed, its path in the
-shape tree), so editing one rule re-rolls only the shapes under it." A stream is a
+Each shape draws from its own stream derived from (seed, its path in the shape tree),
+so editing one rule re-rolls only the shapes under it (docs/language.md, "Stochastic
+choice"). A stream is a
 :class:`numpy.random.Generator` seeded by a :class:`numpy.random.SeedSequence` over the
 build seed and a stable digest of the key. The digest is BLAKE2b (never Python's
 :func:`hash`, which is salted per process), so the same seed gives the same numbers in

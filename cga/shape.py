@@ -1,9 +1,9 @@
 """Shapes of the derivation tree: a scope, a geometry and attributes.
 
-All geometry is stored in metres in the world frame of DESIGN §3: ``y`` is up and floor
-plans live in the x–z plane (2D plan coordinates are ``(x, z)``). The grammar's
-``units`` only matter at the boundary: the evaluator converts length arguments to metres
-and reports scope attributes back in grammar units.
+All geometry is stored in metres in the world frame of docs/architecture.md ("Units and
+frames"): ``y`` is up and floor plans live in the x–z plane (2D plan coordinates are
+``(x, z)``). The grammar's ``units`` only matter at the boundary: the evaluator converts
+length arguments to metres and reports scope attributes back in grammar units.
 
 Shapes are immutable: an operation returns new shapes and never edits its input.
 """
@@ -11,7 +11,7 @@ Shapes are immutable: an operation returns new shapes and never edits its input.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import TYPE_CHECKING, Any, Literal, Mapping
 
 import numpy as np
 from shapely.geometry import Polygon
@@ -19,8 +19,11 @@ from shapely.geometry import Polygon
 if TYPE_CHECKING:  # pragma: no cover - import for type hints only
     from .model import FloorPlan
 
-__all__ = ["Scope", "Mass", "Face", "Geometry", "Shape"]
+__all__ = ["FaceKind", "Scope", "Mass", "Face", "Geometry", "Shape"]
 
+
+FaceKind = Literal["side", "top", "bottom"]
+"""Which face of a mass a face shape is."""
 
 @dataclass(frozen=True)
 class Scope:
@@ -70,7 +73,7 @@ class Face:
     seen from outside, so the right-hand normal points outward."""
 
     vertices: tuple[tuple[float, float, float], ...]
-    kind: str  # "side", "top" or "bottom"
+    kind: FaceKind
 
     def normal(self) -> np.ndarray:
         pts = np.asarray(self.vertices, dtype=float)

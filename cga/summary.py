@@ -1,4 +1,4 @@
-"""What ``cga build`` tells the user after a build (DESIGN §10, "the terminal shows a short
+"""What ``cga build`` tells the user after a build (docs/outputs.md, "the terminal shows a short
 summary").
 
 :func:`summary_dict` condenses a Scene into plain data (``cga build --json`` prints it);

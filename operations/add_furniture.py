@@ -1,7 +1,7 @@
 """``add_furniture(rules.csv, wallWidth>windowWidth>windowHigh, doorWidth, doorHeight,
 steeringIterations, clearanceTries)``: furnish every typed room of a floor.
 
-The thin grammar-facing wrapper of :mod:`cga.operations.furniture.solver` (DESIGN §8,
+The thin grammar-facing wrapper of :mod:`cga.operations.furniture.solver` (docs/furniture.md,
 thesis §5.3.4): it reads the rule table, looks up each item's model (loaded once per
 build through the shared model library), converts the table's distances from grammar
 units to metres and returns the floor with its furniture and the solver's messages.

@@ -1,4 +1,5 @@
-"""``component_split("side_faces"|"top"|"bottom"){...}``: a mass's faces as shapes (DESIGN §5).
+"""``component_split("side_faces"|"top"|"bottom"){...}``: a mass's faces as shapes
+(docs/language.md).
 
 * ``"side_faces"``: one vertical face per footprint edge, in the footprint's
   counter-clockwise order (exterior ring first, then holes). With ``k`` successors, face

@@ -1,4 +1,4 @@
-"""``extrude(height)``: give a footprint height (DESIGN §5).
+"""``extrude(height)``: give a footprint height (docs/language.md).
 
 A mass's footprint is extruded from the mass's base to ``height`` (an existing height is
 replaced, so ``extrude`` on the lot makes the building's body). A horizontal face (the

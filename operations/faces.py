@@ -18,7 +18,7 @@ import numpy as np
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
-from cga.shape import Face, Mass, Scope
+from cga.shape import Face, FaceKind, Mass, Scope
 
 __all__ = ["face_polygon", "face_from_polygon", "side_faces", "top_face", "bottom_face"]
 
@@ -37,7 +37,7 @@ def face_polygon(face: Face, scope: Scope) -> Polygon:
     return orient(Polygon(np.column_stack([rel @ x, rel @ y])), sign=1.0)
 
 
-def face_from_polygon(polygon: Polygon, scope: Scope, kind: str) -> tuple[Face, Scope]:
+def face_from_polygon(polygon: Polygon, scope: Scope, kind: FaceKind) -> tuple[Face, Scope]:
     """Lift a ``(u, v)`` polygon in ``scope``'s plane back to a 3D face and its tight scope.
 
     The new scope keeps the axes and moves the origin to the polygon's lower-left bound.

@@ -1,8 +1,8 @@
 """``make_floor(split, wallWidth, numWindows>windowWidth>windowHigh, doorWidth, doorHeight)``.
 
-Partitions a storey into rooms (DESIGN §6, thesis §5.1): the floor slice's footprint is
-cut by a randomised BSP over a half-edge structure into ``split + 1`` rooms, outer walls
-get their windows, and the shape passes on unchanged with a
+Partitions a storey into rooms (docs/architecture.md, "Floor plans", thesis §5.1): the
+floor slice's footprint is cut by a randomised BSP over a half-edge structure into
+``split + 1`` rooms, outer walls get their windows, and the shape passes on unchanged with a
 :class:`cga.model.FloorPlan` attached. Doors come later (``type_rooms``), and the 3D
 walls and slabs are made from the final plan at meshing time
 (:func:`cga.meshing.solids.floor_nodes`).

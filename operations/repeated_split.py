@@ -1,4 +1,4 @@
-"""``repeated_split(axis, size){First, Rest}``: equal slices of about ``size`` (DESIGN §5).
+"""``repeated_split(axis, size){First, Rest}``: equal slices of about ``size`` (docs/language.md).
 
 The extent along the axis is cut into ``n = max(1, round(extent / size))`` slices of
 equal size (the remainder spread evenly; halves round up). The first slice goes to the

@@ -1,4 +1,5 @@
-"""``split(axis){ size : A | ~size : B | 'ratio : C }`` with CityEngine semantics (DESIGN §5).
+"""``split(axis){ size : A | ~size : B | 'ratio : C }`` with CityEngine semantics
+(docs/language.md).
 
 Sizes along the axis, in order:
 

@@ -1,6 +1,6 @@
 """``type_rooms(rules.csv)``: type the rooms of a floor, build its room graph, cut its doors.
 
-DESIGN §7 and thesis §3.3/§5.2. The work is split by concern under
+docs/room_typing.md and thesis §3.3/§5.2. The work is split by concern under
 :mod:`cga.operations.roomtyping`; :func:`type_plan` wires the steps together on a
 :class:`~cga.model.FloorPlan` and :class:`TypeRooms` is the grammar operation around it:
 
@@ -235,7 +235,7 @@ def _unreachable_error(plan: FloorPlan, pairs: list[tuple[int, int]], sites: Doo
 
 
 class TypeRooms(Operation):
-    """Type the rooms of a floor, build the room graph and cut the doors (DESIGN §7)."""
+    """Type the rooms of a floor, build the room graph and cut the doors (docs/room_typing.md)."""
 
     name = "type_rooms"
     params = (

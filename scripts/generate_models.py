@@ -4,13 +4,14 @@ The OBJ files are build products of this script: change a model here and rerun i
 edit the files by hand (a test regenerates them and compares the bytes). Every model is
 a handful of convex solids (boxes, few-sided cylinders and frustums, coarse spheres) made
 with ``trimesh.creation``, so the physics check can use the parts as a compound body
-without a convex decomposition (DESIGN §8, §9).
+without a convex decomposition (docs/furniture.md, docs/checks.md).
 
-Conventions of every file (DESIGN §3, §8): metres, y up, front toward −z, origin at the
-centre of the footprint on the floor (the lowest point is at y = 0). One OBJ group
-``g part_N`` per part; vertex colours ``v x y z r g b`` colour each part; header comments
-give the model's ``# density`` (kg/m³, chosen so the parts weigh what the real piece
-weighs) and main ``# color``. Output is deterministic: rerunning gives identical bytes.
+Conventions of every file (docs/architecture.md "Units and frames", docs/models.md):
+metres, y up, front toward −z, origin at the centre of the footprint on the floor (the
+lowest point is at y = 0). One OBJ group ``g part_N`` per part; vertex colours
+``v x y z r g b`` colour each part; header comments give the model's ``# density`` (kg/m³, chosen so
+the parts weigh what the real piece weighs) and main ``# color``. Output is deterministic:
+rerunning gives identical bytes.
 
 Usage::
 

@@ -1,4 +1,4 @@
-"""Checks a built scene must pass to be a valid world for a robot simulator (DESIGN §9).
+"""Checks a built scene must pass to be a valid world for a robot simulator (docs/checks.md).
 
 * :func:`check_physics`: furniture at rest, nothing interpenetrating (pybullet).
 * :func:`check_navigability`: every room reachable from the front door by a round robot

@@ -31,7 +31,7 @@ import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import shapely
@@ -58,6 +58,9 @@ __all__ = [
 _OPEN = 100.0
 """Clearance (m) standing for "unbounded" (open ground, a grid without obstacles)."""
 
+
+StartKind = Literal["front_door", "entry_room", "largest_room"]
+"""Where the robot starts on a floor (see :class:`FloorReach`)."""
 
 @dataclass(frozen=True)
 class Bottleneck:
@@ -128,7 +131,7 @@ class FloorReach:
     ``elapsed_seconds`` (wall-clock) is left out of :meth:`to_dict`, which is deterministic."""
 
     floor: int
-    start: str
+    start: StartKind
     start_point: tuple[float, float]
     start_room: int | None
     start_door: int | None
@@ -347,12 +350,13 @@ class _FloorCheck:
 
     # -- the start ---------------------------------------------------------------------
 
-    def _start(self) -> tuple[str, tuple[float, float], int | None, str]:
+    def _start(self) -> tuple[StartKind, tuple[float, float], int | None, str]:
         if self.front is not None:
             inside = next((r for r in self.front.rooms if r != OUTSIDE), None)
             return ("front_door", self._outside_of(self.front), inside,
                     f"the robot starts outside front door {self.front.id}")
         why = ("upper floor" if self.plan.index > 0 else "floor without a front door")
+        kind: StartKind
         if self.plan.entry is not None:
             room = self.plan.room(self.plan.entry)
             kind, which = "entry_room", "the entry room where the stair arrives"

@@ -12,10 +12,10 @@ sill inside the band stays closed because the wall below the sill is in the band
 
 Cells and frames: the array follows the ROS map convention (``map_server``): row 0 is the
 top of the image, i.e. the largest ROS ``y``; ROS ``(x, y)`` is world ``(x, −z)``
-(DESIGN §3), so rows run along world ``+z`` and columns along ``+x``. ``origin`` is the ROS
-position of the lower-left corner of the lower-left cell, as in a map YAML file. Shadows
-are drawn with their outlines, so a cell an obstacle crosses is occupied and thin parts
-never vanish; positions are accurate to one cell.
+(docs/architecture.md, "Units and frames"), so rows run along world ``+z`` and columns
+along ``+x``. ``origin`` is the ROS position of the lower-left corner of the lower-left
+cell, as in a map YAML file. Shadows are drawn with their outlines, so a cell an obstacle
+crosses is occupied and thin parts never vanish; positions are accurate to one cell.
 
 Static furniture (rugs, window frames) is not an obstacle: rugs are walked over and a
 window frame stands in a wall. A door leaf is one, where the build leaves it (DESIGN §16):

@@ -5,7 +5,7 @@ simulation starts: an item sunk into a wall is flung across the room on the firs
 an item placed in mid-air falls. This check loads a scene into pybullet (DIRECT mode, its
 own server), measures how deeply each item overlaps the structure or another item, lets
 gravity act for a short while and measures how far each item moved and turned
-(DESIGN §9).
+(docs/checks.md).
 
 Frame: the world frame is used as is (metres, y up) with gravity along −y, so positions
 in the report need no conversion. Structure (walls, slabs, ceilings) is static: each

@@ -1,4 +1,4 @@
-"""Exporters: one pure builder and one writer per output format (DESIGN §10).
+"""Exporters: one pure builder and one writer per output format (docs/outputs.md).
 
 :data:`EXPORTERS` maps a format name to a writer
 ``export_x(scene, nodes, out_dir: Path, name: str) -> list[Path]`` that writes its files

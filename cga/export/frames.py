@@ -1,8 +1,9 @@
 """The one place where world coordinates become robot (ROS) coordinates.
 
-cga's world frame (DESIGN §3) is y-up with floor plans in the x–z plane, like glTF and
-OBJ. Robot formats (URDF, SDF, ROS occupancy maps) use the ROS convention of REP 103:
-z up, x forward, right-handed. The change of frame is the rotation by +90° about x::
+cga's world frame (docs/architecture.md, "Units and frames") is y-up with floor plans in
+the x–z plane, like glTF and OBJ. Robot formats (URDF, SDF, ROS occupancy maps) use the ROS
+convention of REP 103: z up, x forward, right-handed. The change of frame is the rotation
+by +90° about x::
 
     (x, y, z)_ros = (x, −z, y)_world
 

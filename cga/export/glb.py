@@ -1,4 +1,4 @@
-"""``<name>.glb``: the building as binary glTF 2.0 (DESIGN §10, §16).
+"""``<name>.glb``: the building as binary glTF 2.0 (docs/outputs.md).
 
 A node tree that follows the node paths: ``floor1/room3_Kitchen/wall2`` is a child of
 the group node ``floor1/room3_Kitchen``, itself a child of ``floor1``; every node keeps

@@ -1,6 +1,6 @@
 """Floor plans, ``<name>.floor{N}.svg`` and ``.png``: an architect's sketch of each storey.
 
-What is drawn (DESIGN §10), bottom to top:
+What is drawn (docs/outputs.md), bottom to top:
 
 * rooms filled with a soft colour per type (:mod:`cga.export.palette`);
 * furniture footprints with outlines and small names (rugs dashed; detail items such

@@ -2,8 +2,9 @@
 
 The document lists floors, rooms, walls (with openings), doors, windows, furniture
 poses, room-graph edges, diagnostics, checks, the seed and the tool version, in the
-world frame of DESIGN §3 (metres, y up, plan coordinates ``(x, z)``). Its JSON Schema
-(draft 2020-12) ships as package data, ``cga/schema/scene.schema.json``.
+world frame of docs/architecture.md ("Units and frames") (metres, y up, plan coordinates
+``(x, z)``). Its JSON Schema (draft 2020-12) ships as package data,
+``cga/schema/scene.schema.json``.
 
 The text is deterministic: keys sorted, floats rounded to 1e-6, lists in model order
 (ids ascending). The one exception is ``timings`` (wall-clock seconds per stage), kept

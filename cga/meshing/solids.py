@@ -1,7 +1,8 @@
 """3D walls and slabs of a storey, made by the meshing layer from the final plan.
 
 ``make_floor`` only makes the plan; doors are added later by ``type_rooms``. So the
-solids are built last, from whatever openings the walls carry then (DESIGN §6):
+solids are built last, from whatever openings the walls carry then (docs/architecture.md,
+"Floor plans"):
 
 * every wall (DCEL edge) becomes one prism from the walking surface up to the top of the
   storey, ``wall_thickness`` thick: inner walls centred on their edge, outer walls inside

@@ -1,4 +1,4 @@
-"""Floor partitioning for ``make_floor`` (DESIGN §6).
+"""Floor partitioning for ``make_floor`` (docs/architecture.md, "Floor plans").
 
 :mod:`.dcel` is the half-edge structure, :mod:`.bsp` cuts a footprint into rooms,
 :mod:`.assemble` turns the result into a :class:`cga.model.FloorPlan`, :mod:`.openings`

@@ -3,7 +3,7 @@
 The floor is the root leaf; every split cuts one leaf (a DCEL face) along an
 axis-aligned chord, which becomes an inner wall; the leaves are the rooms (thesis §3.2,
 §5.1.2, Algorithms 8–10). The thesis always cut in the middle with alternating axes, so
-every floor looked the same; here (DESIGN §6):
+every floor looked the same; here (docs/architecture.md, "Floor plans"):
 
 * the largest leaf is cut first (ties by id), falling back to smaller ones;
 * the cut runs across the leaf's longer side (either way when the bounding box is within

@@ -1,10 +1,10 @@
 """A doubly connected edge list (half-edge structure) for floor plans.
 
-``make_floor`` partitions a storey by cutting faces of this structure (DESIGN §6): a room
-is a bounded face, a wall segment is a pair of twin half-edges, an outer wall is an edge
-whose twin lies on the unbounded (outside) face. Cutting a face inserts vertices into the
-edges the cut meets, so a T-junction is a proper vertex and two rooms share exactly the
-half-edges of their common wall.
+``make_floor`` partitions a storey by cutting faces of this structure
+(docs/architecture.md, "Floor plans"): a room is a bounded face, a wall segment is a pair
+of twin half-edges, an outer wall is an edge whose twin lies on the unbounded (outside)
+face. Cutting a face inserts vertices into the edges the cut meets, so a T-junction is a
+proper vertex and two rooms share exactly the half-edges of their common wall.
 
 Conventions: coordinates are plan ``(x, z)`` in metres. Bounded faces are traversed
 counter-clockwise (positive signed area in ``(x, z)``), so every half-edge has its face

@@ -1,4 +1,4 @@
-"""Floor plans from hand-written rectangles, for rule authors' tests (DESIGN §7).
+"""Floor plans from hand-written rectangles, for rule authors' tests (docs/room_typing.md).
 
 A rule author who wants to unit-test a room-typing or furniture table needs a floor with
 known rooms. :func:`plan_from_rectangles` builds the same :class:`cga.model.FloorPlan`

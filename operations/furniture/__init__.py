@@ -1,1 +1,1 @@
-"""Furniture: the model library and the placement of items in typed rooms (DESIGN §8)."""
+"""Furniture: the model library and the placement of items in typed rooms (docs/furniture.md)."""

@@ -1,6 +1,6 @@
 """Clearance geometry: the space an item needs and the space doors and windows keep free.
 
-Three kinds of plan regions decide where furniture may stand (DESIGN §8, thesis §5.3.2):
+Three kinds of plan regions decide where furniture may stand (docs/furniture.md, thesis §5.3.2):
 
 * an item's **envelope**: its body (the footprint) and its clearance boxes in front,
   behind and at both sides, sized by the rule's ``clearanceFront/Back/Side``. The thesis
@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from shapely.geometry import Point, Polygon
@@ -56,7 +57,7 @@ class EnvelopePart:
     """One box of an item's envelope: ``"body"`` or a clearance ``"front"``, ``"back"`` or
     ``"side"``; ``box`` is relative to the item's centre."""
 
-    kind: str
+    kind: Literal["body", "front", "back", "side"]
     box: Box
 
     @property

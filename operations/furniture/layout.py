@@ -10,7 +10,7 @@ questions exactly, with shapely polygons indexed by a :class:`shapely.STRtree`:
   clones (thesis §5.3.2): each obstacle forbids one open interval of positions, found by
   clipping the obstacle with the strip the item sweeps and projecting the pieces.
 
-What blocks what (DESIGN §8):
+What blocks what (docs/furniture.md):
 
 * the walls (everything outside the free floor) block bodies and clearance boxes;
 * a solid item's body blocks other bodies and clearance boxes;

@@ -4,7 +4,7 @@
 the exporters its coloured mesh. All of them ask a :class:`ModelLibrary`, which searches
 the user's folders before the models shipped in ``cga.furniture_models`` and loads each file once.
 
-Model files (DESIGN §8) are Wavefront OBJ in metres, y up, front toward −z, origin at the
+Model files (docs/models.md) are Wavefront OBJ in metres, y up, front toward −z, origin at the
 centre of the footprint on the floor. Each OBJ group (``g``) or object (``o``) is one
 convex part, so physics can use the parts as a compound body directly. Optional header
 comments give the physical and visual properties::

@@ -1,6 +1,6 @@
 """Furniture rule tables: the 17-column CSV of the thesis, parsed and checked.
 
-A rule places one item in every room of its type (DESIGN §8, thesis §5.3.1)::
+A rule places one item in every room of its type (docs/furniture.md, thesis §5.3.1)::
 
     Room;Name;isInCorner;isAlongWall;hasPair;PairWith;minPairDistance;maxPairDistance;needsTurn;
     clearanceSide;clearanceFront;clearanceBack;canCloseWindow;canBeAround;nonCollision;isDetail;isOnTheSide

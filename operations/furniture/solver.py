@@ -1,6 +1,6 @@
 """The furniture solver: furnish every typed room of a floor by its rules.
 
-Per room (thesis algorithms 5-7, DESIGN §8):
+Per room (thesis algorithms 5-7, docs/furniture.md):
 
 1. the items that are not children, corner items or rugs get random start positions and
    are spread by separation steering (:mod:`.steering`) for ``steering_iterations``

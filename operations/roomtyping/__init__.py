@@ -1,4 +1,4 @@
-"""Room typing (DESIGN §7, thesis §3.3 and §5.2): the algorithms behind ``type_rooms``.
+"""Room typing (docs/room_typing.md, thesis §3.3 and §5.2): the algorithms behind ``type_rooms``.
 
 One concern per module:
 

@@ -1,6 +1,6 @@
 """Room-typing rule tables: the thesis' semicolon CSV format, parsed and validated.
 
-A table names one rule per row (DESIGN §7, thesis §5.2.1)::
+A table names one rule per row (docs/room_typing.md, thesis §5.2.1)::
 
     Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom
     Kitchen;0.25;0.5;Livingroom;0;1;0

@@ -1,6 +1,6 @@
 """Independent checks of a furnished floor: overlaps, rooms, doors, windows, pairs.
 
-Written against the documented guarantees only (DESIGN §8, docs/furniture.md), not the
+Written against the documented guarantees only (docs/furniture.md, docs/furniture.md), not the
 solver: the rule table is read with :mod:`csv`, door swings and window bands are built
 here from the door and window records, and every test is a plain shapely predicate on
 the items' footprints (:meth:`cga.model.FurnitureItem.footprint`). A bug in the solver

@@ -2,8 +2,9 @@
 
 Reads the map the way map_server does (YAML fields, PGM pixels, origin at the lower-left
 pixel corner) and the walls, doors, furniture and rooms from ``<name>.scene.json``, and
-converts world plan points to map points by the rule of DESIGN §3 written out here,
-``(x, y)_map = (x, −z)_world``, so nothing of the exporter's code is reused.
+converts world plan points to map points by the rule of docs/architecture.md ("Units and
+frames") written out here, ``(x, y)_map = (x, −z)_world``, so nothing of the exporter's
+code is reused.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Independent checks of a typed floor: types, mandatory rules, doors, reachability.
 
-Written against the documented behaviour only (DESIGN §7, docs/room_typing.md), not the
+Written against the documented behaviour only (docs/room_typing.md, docs/room_typing.md), not the
 typing code: the rule table is read with :mod:`csv`, adjacency comes from the room
 polygons (shapely), reachability from the door records (networkx). A bug in the typing
 cannot hide behind the same bug here.

@@ -1,4 +1,4 @@
-"""The shipped OBJ models follow DESIGN §8: metres, y up, front toward −z, origin at the
+"""The shipped OBJ models follow docs/models.md: metres, y up, front toward −z, origin at the
 centre of the footprint on the floor, realistic sizes, closed convex parts.
 
 The files are read here with a plain OBJ reader, not with the model library, so these

@@ -1,4 +1,4 @@
-"""The grammar language parser: every construct of DESIGN §4 → the expected AST.
+"""The grammar language parser: every construct of docs/language.md → the expected AST.
 
 Expected trees are written out by hand with the node classes; spans do not take part in
 node equality, so they are checked separately where they matter.

@@ -1,4 +1,4 @@
-"""The grammars printed in the room-generation thesis parse as written (DESIGN §4).
+"""The grammars printed in the room-generation thesis parse as written (docs/language.md).
 
 Fixtures in ``tests/data/thesis/`` are copied from the thesis text: Abbildung 6.5 (room
 typing test; listing line numbers dropped) and Abbildung 6.12 (furniture test, with the
