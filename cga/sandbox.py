@@ -6,7 +6,7 @@ must not make a build read, or print, an arbitrary file of the machine that runs
 models, the lot — must lie, after following symbolic links, inside one of:
 
 * the grammar's folder and everything below it;
-* the data shipped with cga (``cga.rules``, ``cga.models``);
+* the data shipped with cga (``cga.rules``, ``cga.furniture_models``);
 * a folder the user allows explicitly: ``--allow-path DIR`` on the command line
   (repeatable) or ``allow_paths=[...]`` in :func:`cga.build`.
 
@@ -68,15 +68,15 @@ class Sandbox:
             (real_path(grammar_dir if grammar_dir is not None else Path.cwd()),
              "the grammar's folder")]
         for package, label in (("cga.rules", "shipped rule tables"),
-                               ("cga.models", "shipped models")):
+                               ("cga.furniture_models", "shipped models")):
             folder = shipped_dir(package)
             if folder is not None:
                 roots.append((real_path(folder), label))
-        for folder in allow_paths:
-            if not is_folder(folder):
-                raise UsageError(f"--allow-path {excerpt(str(folder), PATH_LIMIT)}: not an "
+        for allowed in allow_paths:
+            if not is_folder(allowed):
+                raise UsageError(f"--allow-path {excerpt(str(allowed), PATH_LIMIT)}: not an "
                                  f"existing folder")
-            roots.append((real_path(folder), _ALLOWED))
+            roots.append((real_path(allowed), _ALLOWED))
         return cls(tuple(roots))
 
     @property

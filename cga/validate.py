@@ -116,7 +116,7 @@ class _Checker:
                 units=self.units, resolve=self.resolver(call, values), base_dir=self.base_dir,
                 sandbox=self.sandbox, cache=self.cache))
 
-    def resolver(self, call: ast.OpCall, values: list[object]):
+    def resolver(self, call: ast.OpCall, values: Sequence[object]):
         """``resolve`` for one call: a missing or refused file is reported at the argument
         that names it."""
         def resolve(value: str, kind: str = "rules") -> Path:

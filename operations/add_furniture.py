@@ -19,7 +19,7 @@ from cga.model import FloorPlan
 from cga.shape import Shape
 
 from cga.operation import CheckContext, Child, Operation, OperationContext, Param, is_number
-from .furniture.library import ModelLibrary, default_library, grammar_library
+from .furniture.library import ModelLibrary, grammar_library
 from .furniture.passage import PASSAGE_WIDTH
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
 from .furniture.solver import furnish_plan

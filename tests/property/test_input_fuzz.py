@@ -42,7 +42,7 @@ from forked import run_forked
 pytestmark = pytest.mark.slow
 
 RULES = shipped_dir("cga.rules")
-MODELS = shipped_dir("cga.models")
+MODELS = shipped_dir("cga.furniture_models")
 BATCH = 25
 EXAMPLES = 80
 BATCH_TIME = 90.0

@@ -22,7 +22,7 @@ from forked import run_forked
 
 DEMOS = Path(__file__).resolve().parents[3] / "demos"
 RULES = shipped_dir("cga.rules")
-MODELS = shipped_dir("cga.models")
+MODELS = shipped_dir("cga.furniture_models")
 
 
 @pytest.fixture

@@ -154,7 +154,7 @@ def test_model_linking_out_of_the_tree_is_refused(tmp_path, capsys):
     project.mkdir()
     outside = tmp_path / "outside"
     outside.mkdir()
-    chair = shipped_dir("cga.models") / "chair.obj"
+    chair = shipped_dir("cga.furniture_models") / "chair.obj"
     (outside / "chair.obj").write_text(chair.read_text())
     (project / "chair.obj").symlink_to(outside / "chair.obj")
     text = (DEMOS / "office.grammar").read_text(encoding="utf-8")
