@@ -32,7 +32,7 @@ from .roomtyping.doors import DOOR_MARGIN
 __all__ = ["MIN_CORRIDOR_WIDTH", "MakeFloor"]
 
 MIN_CORRIDOR_WIDTH = 1.2
-"""Least corridor width (m): two people pass, a wheelchair turns (DESIGN §11)."""
+"""Least corridor width (m): two people pass, a wheelchair turns (docs/architecture.md)."""
 
 
 class MakeFloor(Operation):
@@ -143,7 +143,7 @@ class MakeFloor(Operation):
 
 
 def _corridor(args: dict[str, Any], units: float) -> CorridorSpec:
-    """The corridor options, checked (DESIGN §11)."""
+    """The corridor options, checked (docs/architecture.md, "Floor plans")."""
     mode = str(args["corridor"]).lower()
     if mode not in CORRIDOR_MODES:
         raise DerivationError(f"corridor must be one of {', '.join(map(repr, CORRIDOR_MODES))}, "

@@ -21,7 +21,7 @@ Concave leaves (pieces of L, U or T footprints) work the same way: a line may cr
 such a leaf several times; each crossing interval is a chord that splits it in two, and
 the longest feasible one is taken.
 
-Fixed faces (DESIGN §11): corridors, entry halls and stair cores can be given up front
+Fixed faces (docs/architecture.md): corridors, entry halls and stair cores can be given up front
 (:class:`FixedFace`). They become faces of the DCEL before the first cut, and no cut
 ever crosses them; the BSP partitions only the free pieces around them
 (:mod:`.tiling`). A leaf that shares wall with a circulation face keeps that access:

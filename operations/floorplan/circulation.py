@@ -1,4 +1,4 @@
-"""Where the corridor or hall of a floor goes, before the rooms are cut (DESIGN §11).
+"""Where the corridor or hall of a floor goes, before the rooms are cut (docs/architecture.md).
 
 Every mode returns fixed faces for :func:`.bsp.partition`: the circulation (one face,
 never cut) and, for the TFG's rooms-per-side control, the rooms along it.
@@ -131,7 +131,7 @@ def _straight(outline: Polygon, spec: CorridorSpec,
         lambda a, b: box(a, minz - 1, b, maxz + 1))
     sides = (outline.intersection(band(lo - 1, start)), outline.intersection(band(end, hi + 1)))
     _check_free(outline.difference(corridor), spec)
-    return corridor, sides  # type: ignore[return-value]
+    return corridor, sides
 
 
 def _divide(side: Polygon | shapely.Geometry, count: int, along_long: bool) -> list[Polygon]:
@@ -207,7 +207,7 @@ def _slabs(outline: Polygon, horizontal: bool) -> list[Rect]:
         part = outline.intersection(band)
         for g in getattr(part, "geoms", [part]):
             if isinstance(g, Polygon) and g.area > _TOL:
-                pieces.append(tuple(round(v, 9) for v in g.bounds))  # type: ignore[arg-type]
+                pieces.append(tuple(round(v, 9) for v in g.bounds))
     merged = True
     while merged:
         merged = False

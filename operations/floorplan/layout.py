@@ -5,7 +5,7 @@ typing (or no doors the access rules allow) for the layout, it asks the recipe f
 re-draw: the same footprint, corridors and rules, cut from the next random stream of
 the same shape (``("redraw", attempt)`` under the shape's key), with cut positions
 aimed at the areas the table asks for (:func:`.treemap.partition_to_areas`). Re-draws
-are bounded and deterministic for the seed (DESIGN §11).
+are bounded and deterministic for the seed (docs/architecture.md, "Floor plans").
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Tile a footprint with fixed faces and the free pieces around them (DESIGN §11).
+"""Tile a footprint with fixed faces and the free pieces around them (docs/architecture.md).
 
 Corridors, entry halls and stair cores are placed before the BSP partitions a floor:
 they are *fixed faces* of the half-edge structure that no cut may cross. The rest of the
@@ -70,7 +70,7 @@ def _tile(footprint: tuple[Point, ...],
           fixed: tuple[tuple[Point, ...], ...]) -> tuple[tuple[tuple[Point, ...], ...], int]:
     """:func:`tile_with_fixed_faces` on hashable arguments, cached."""
     outline = Polygon(footprint)
-    shapes = []
+    shapes: list[Polygon] = []
     for i, ring in enumerate(fixed):
         polygon = Polygon(ring)
         if len(ring) < 3 or not polygon.is_valid or polygon.area <= EPS:

@@ -1,4 +1,4 @@
-"""Partitions aimed at given room areas, and the thesis' mid-cut partition (DESIGN §11).
+"""Partitions aimed at given room areas, and the thesis' mid-cut partition (docs/architecture.md).
 
 :func:`partition_to_areas` is a treemap-style BSP (Marson & Musse's squarified treemaps
 over the same half-edge cuts as :mod:`.bsp`): the areas wanted are split into two groups
@@ -188,8 +188,9 @@ def _cut_for(dcel: DCEL, face: Face, wanted: list[float], rng: np.random.Generat
                 h = dcel.split_face(face, *chord)
                 kept, new = h.face, h.twin.face
                 # the group with the larger total goes to the larger piece
-                big, small = (low, high) if sum(low) >= sum(high) else (high, low)
-                first, second = (big, small) if dcel.area(kept) >= dcel.area(new) else (small, big)
+                larger, smaller = (low, high) if sum(low) >= sum(high) else (high, low)
+                first, second = ((larger, smaller) if dcel.area(kept) >= dcel.area(new)
+                                 else (smaller, larger))
                 return Cut(kept.id, new.id, axis, position, *chord), first, second
     return None
 

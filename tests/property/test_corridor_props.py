@@ -1,4 +1,4 @@
-"""Properties of make_floor's corridors over many seeds and footprints (DESIGN §11).
+"""Properties of make_floor's corridors over many seeds and footprints (docs/architecture.md).
 
 For rectangle, L, U and T storeys with a spine, hall or centre-line corridor: either the
 footprint is refused with a message saying why (too shallow for corridor and rooms), or
@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from cga.errors import DerivationError
-from cga.operations.base import OperationContext
+from cga.operation import OperationContext
 from cga.operations.make_floor import MakeFloor
 from cga.shape import Mass, Shape
 
