@@ -1,7 +1,7 @@
 """Door leaves on hinges: one geometric description every format and check shares.
 
 A door (:class:`cga.model.Door`) is an opening in a wall plus a leaf that turns about a
-vertical axis at the ``hinge`` end of the opening (DESIGN §16). :func:`door_leaf` derives
+vertical axis at the ``hinge`` end of the opening (docs/outputs.md). :func:`door_leaf` derives
 the leaf's hinge frame from the plan; everything else reads it:
 
 * the meshing poses the door model in that frame at the build's angle
@@ -203,7 +203,9 @@ def leaf_mesh(mesh: "trimesh.Trimesh", matrix: np.ndarray) -> "trimesh.Trimesh":
     if np.linalg.det(matrix[:3, :3]) < 0:
         faces = faces[:, ::-1]
     return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
-                           faces=faces.copy(), visual=mesh.visual.copy(), process=False)
+                           faces=faces.copy(),
+                           visual=mesh.visual.copy() if mesh.visual is not None else None,
+                           process=False)
 
 
 def slab_range(parts: Sequence["trimesh.Trimesh"]) -> tuple[float, float]:

@@ -198,8 +198,10 @@ class Room:
         return f"room{self.id}_{self.type}" if self.type else f"room{self.id}"
 
 
-DOOR_STATES = ("closed", "open", "ajar")
-"""States a door leaf can be built in (DESIGN §16)."""
+DoorState = Literal["closed", "open", "ajar"]
+
+DOOR_STATES: tuple[DoorState, ...] = ("closed", "open", "ajar")
+"""States a door leaf can be built in (docs/outputs.md)."""
 
 DOOR_OPEN_ANGLE = math.pi / 2
 """rad: how far a leaf opens (its joint's upper limit): the quarter circle the plan draws
@@ -227,7 +229,7 @@ class Door:
     hinge: Literal["start", "end"] = "start"
     is_front: bool = False
     reason: Literal["rule", "reachability", "front"] = "rule"
-    state: Literal["closed", "open", "ajar"] = "closed"
+    state: DoorState = "closed"
     angle: float = 0.0
 
     @property

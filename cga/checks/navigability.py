@@ -14,7 +14,7 @@ has no stair geometry yet, and the report says so.
 Doors: a robot (or its planner) can open a door, so a room counts as reachable through
 any door whatever its state; the report also says which rooms the robot reaches with the
 doors as the build leaves them (``reachable_as_built``) and which doors are not open
-(``closed_doors``, DESIGN §16), so a planner knows which doors it must open.
+(``closed_doors``, docs/outputs.md), so a planner knows which doors it must open.
 
 For each room the report gives whether the robot reaches it, what share of the room's
 drivable floor it reaches, and the narrowest passage on the way there: the bottleneck of

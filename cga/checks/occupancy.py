@@ -18,7 +18,7 @@ cell, as in a map YAML file. Shadows are drawn with their outlines, so a cell an
 crosses is occupied and thin parts never vanish; positions are accurate to one cell.
 
 Static furniture (rugs, window frames) is not an obstacle: rugs are walked over and a
-window frame stands in a wall. A door leaf is one, where the build leaves it (DESIGN §16):
+window frame stands in a wall. A door leaf is one, where the build leaves it (docs/outputs.md):
 a closed leaf shuts its doorway on the map, an open one stands against its jamb; its
 shadow is that of its collision box (:mod:`cga.doors`), the one every robot format uses.
 ``include_doors=False`` draws the building with every door open, which the navigability

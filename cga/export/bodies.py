@@ -14,6 +14,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from cga.fsutil import atomic_write
 
 from .obj import mtl_text, obj_text
@@ -40,7 +42,7 @@ class LinkFiles:
         return [p for p in (self.visual, self.material, *self.colliders.values()) if p]
 
 
-def numbers_text(values: Sequence[float]) -> str:
+def numbers_text(values: "Sequence[float] | np.ndarray") -> str:
     """Numbers as XML attribute/element text: space separated, at most 6 decimals."""
     out = []
     for value in values:

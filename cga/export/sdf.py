@@ -91,10 +91,10 @@ def _building(world_el: ET.Element, world: World, files: dict[str, LinkFiles]) -
         if joint.kind != "revolute":
             continue
         leaf = world.link(joint.child)
-        link = ET.SubElement(model, "link", name=leaf.name)
-        _pose(link, leaf.pose.position, leaf.pose.yaw)
-        _inertial(link, leaf)
-        _geometry(link, leaf, files[leaf.name], world)
+        leaf_element = ET.SubElement(model, "link", name=leaf.name)
+        _pose(leaf_element, leaf.pose.position, leaf.pose.yaw)
+        _inertial(leaf_element, leaf)
+        _geometry(leaf_element, leaf, files[leaf.name], world)
         element = ET.SubElement(model, "joint", name=joint.name, type="revolute")
         ET.SubElement(element, "parent").text = STRUCTURE
         ET.SubElement(element, "child").text = leaf.name

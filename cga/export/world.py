@@ -1,6 +1,6 @@
 """One description of a build as a robot world, which every robot format writes.
 
-URDF, SDF, MJCF and USD (DESIGN §16) differ in syntax, not in content: each gets the
+URDF, SDF, MJCF and USD (docs/outputs.md) differ in syntax, not in content: each gets the
 same :class:`World`, built once by :func:`robot_world`, in the ROS frame (REP 103: z up,
 metres; :mod:`cga.export.frames`). A world is a tree of links under one root,
 ``building``:
@@ -31,7 +31,7 @@ import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -136,13 +136,13 @@ def box_inertia(mass: float, extents: Sequence[float]) -> tuple[float, float, fl
             mass * (a * a + b * b) / 12.0)
 
 
-def centre_of_mass(parts: Sequence["object"]) -> np.ndarray:
+def centre_of_mass(parts: Sequence[Any]) -> np.ndarray:
     """World centre of mass of solid convex parts of uniform density (the volume-weighted
     mean of their centroids); the bounding-box centre if they enclose no volume."""
-    solids = [p if p.is_volume else p.convex_hull for p in parts]  # type: ignore[attr-defined]
+    solids = [p if p.is_volume else p.convex_hull for p in parts]
     volumes = np.array([max(float(s.volume), 0.0) for s in solids])
     if volumes.sum() <= 0.0:
-        bounds = np.array([p.bounds for p in parts])  # type: ignore[attr-defined]
+        bounds = np.array([p.bounds for p in parts])
         return (bounds[:, 0].min(axis=0) + bounds[:, 1].max(axis=0)) / 2
     return np.average([s.center_mass for s in solids], axis=0, weights=volumes)
 

@@ -56,7 +56,7 @@ def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> Sc
     )
 
 
-def _translation(offset: Sequence[float]) -> np.ndarray:
+def _translation(offset: Sequence[float] | np.ndarray) -> np.ndarray:
     matrix = np.eye(4)
     matrix[:3, 3] = offset
     return matrix

@@ -1,4 +1,4 @@
-"""Door states: how a build leaves each door leaf (closed, open or ajar; DESIGN §16).
+"""Door states: how a build leaves each door leaf (closed, open or ajar; docs/outputs.md).
 
 A robot world needs doors a planner must open as well as doors it can drive through.
 ``type_rooms(..., door_state=...)`` sets every door of a floor to one state, or draws one
@@ -59,9 +59,11 @@ def with_door_states(doors: Sequence[Door], state: str, rng: np.random.Generator
         raise ValueError(f"door_state must be one of {DOOR_STATE_CHOICES}, got {state!r}")
     out = []
     for door in doors:
-        chosen, angle = state, None
+        angle = None
         if state == "random":
             chosen = DOOR_STATES[int(rng.integers(len(DOOR_STATES)))]
+        else:
+            chosen = next(s for s in DOOR_STATES if s == state)  # checked above
             if chosen == "ajar":
                 angle = float(rng.uniform(*AJAR_RANGE))
         if angle is None:

@@ -1,4 +1,4 @@
-"""The robot formats in the clients that consume them (DESIGN §16).
+"""The robot formats in the clients that consume them (docs/outputs.md).
 
 Every demo is built once with ``--export urdf,sdf,mjcf,usd,json`` and loaded in MuJoCo,
 pybullet and usd-core; ``ign sdf -k`` checks the SDF when libsdformat's tool is
