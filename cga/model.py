@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from shapely.geometry import LineString, Point, Polygon, box
 from shapely import affinity
+from shapely.geometry.polygon import orient
 
 if TYPE_CHECKING:  # pragma: no cover
     import networkx as nx
@@ -45,6 +46,9 @@ __all__ = [
     "Window",
     "FurnitureItem",
     "FloorSettings",
+    "StairCore",
+    "Flight",
+    "Stair",
     "FloorPlan",
     "front_vector",
     "rotation_matrix",
@@ -228,7 +232,7 @@ class Door:
     swing_room: int
     hinge: Literal["start", "end"] = "start"
     is_front: bool = False
-    reason: Literal["rule", "reachability", "front"] = "rule"
+    reason: Literal["rule", "reachability", "front", "stair"] = "rule"
     state: DoorState = "closed"
     angle: float = 0.0
 
@@ -309,6 +313,140 @@ class FloorSettings:
     slab_thickness: float = 0.2
 
 
+Point2 = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class StairCore:
+    """A building's stair core (DESIGN §12): the rectangle reserved on every storey of
+    the stack it serves, in the same place, before the storey is partitioned.
+
+    ``polygon`` is the core between wall centre lines. The stair is laid out in the
+    core's own frame: ``u`` runs from the landing end along the flights, ``v`` across
+    them, both unit plan vectors; ``origin`` is the interior corner ``(u, v) = (0, 0)``
+    (``wall_thickness`` inside the polygon). The floor landing is the interior strip
+    ``0 ≤ u ≤ landing_depth``. ``risers``, ``rise`` and ``going`` are the design of one
+    storey's stair; ``storeys`` is how many storeys the core serves.
+    """
+
+    polygon: Polygon
+    origin: Point2
+    u: Point2
+    v: Point2
+    kind: Literal["straight", "U"]
+    width: float
+    well: float
+    landing_depth: float
+    risers: int
+    rise: float
+    going: float
+    storeys: int
+
+    @property
+    def flight_risers(self) -> int:
+        """Risers per flight: all of them for a straight stair, half for a U stair."""
+        return self.risers if self.kind == "straight" else self.risers // 2
+
+    @property
+    def run(self) -> float:
+        """Plan length of one flight (its treads; the last riser lands on a landing)."""
+        return (self.flight_risers - 1) * self.going
+
+    @property
+    def interior_width(self) -> float:
+        return self.width if self.kind == "straight" else 2 * self.width + self.well
+
+    @property
+    def interior_length(self) -> float:
+        """Floor landing, flight, and the top landing (straight) or half landing (U)."""
+        return 2 * self.landing_depth + self.run
+
+    def at(self, u: float, v: float) -> Point2:
+        """The plan point at core coordinates ``(u, v)``."""
+        return (self.origin[0] + u * self.u[0] + v * self.v[0],
+                self.origin[1] + u * self.u[1] + v * self.v[1])
+
+    def rect(self, u0: float, u1: float, v0: float, v1: float) -> Polygon:
+        """The plan rectangle ``u0..u1 × v0..v1`` of the core frame, counter-clockwise."""
+        ring = [self.at(u0, v0), self.at(u1, v0), self.at(u1, v1), self.at(u0, v1)]
+        return orient(Polygon(ring), sign=1.0)
+
+
+@dataclass(frozen=True)
+class Flight:
+    """One straight run of steps. The first riser stands at plan point ``start`` (the
+    middle of the flight's width) and rises from ``base_y``; each of the ``risers``
+    risers is ``rise`` high and each tread ``going`` deep along ``direction``; the
+    last riser lands on the landing beyond the last tread."""
+
+    start: Point2
+    direction: Point2
+    width: float
+    base_y: float
+    risers: int
+    rise: float
+    going: float
+
+    @property
+    def run(self) -> float:
+        return (self.risers - 1) * self.going
+
+    @property
+    def top_y(self) -> float:
+        return self.base_y + self.risers * self.rise
+
+    def _point(self, along: float, across: float) -> Point2:
+        dx, dz = self.direction
+        return (self.start[0] + along * dx - across * dz, self.start[1] + along * dz + across * dx)
+
+    def _rect(self, a0: float, a1: float) -> Polygon:
+        h = self.width / 2
+        return orient(Polygon([self._point(a0, -h), self._point(a1, -h), self._point(a1, h),
+                               self._point(a0, h)]), sign=1.0)
+
+    def treads(self) -> list[tuple[Polygon, float]]:
+        """Each tread's plan rectangle and the height of its top (bottom to top)."""
+        return [(self._rect(k * self.going, (k + 1) * self.going), self.base_y + (k + 1) * self.rise)
+                for k in range(self.risers - 1)]
+
+    def polygon(self) -> Polygon:
+        """The flight's plan rectangle (its treads)."""
+        return self._rect(0.0, self.run)
+
+
+@dataclass(frozen=True)
+class Stair:
+    """The stair between floor ``floors[0]`` and the floor above, ``floors[1]``.
+
+    ``polygon`` is its plan outline without the floor landings (flights and any half
+    landing): the stairwell cut into the upper floor's slab. ``landings`` are the floor
+    landings (bottom on the lower floor, top on the upper floor) and ``landing_points``
+    where a walker steps off the stair onto each; ``rooms`` the core room on each floor.
+    """
+
+    id: int
+    floors: tuple[int, int]
+    kind: Literal["straight", "U"]
+    polygon: Polygon
+    landings: tuple[Polygon, Polygon]
+    landing_points: tuple[Point2, Point2]
+    flights: tuple[Flight, ...]
+    half_landing: Polygon | None
+    rooms: tuple[int, int]
+    width: float
+    rise: float
+    going: float
+    risers: int
+    bottom_y: float
+    top_y: float
+    thickness: float = 0.2
+
+    @property
+    def treads(self) -> int:
+        """Steps a walker treads on (the landings not counted)."""
+        return sum(f.risers - 1 for f in self.flights)
+
+
 @dataclass(frozen=True)
 class FloorPlan:
     """One storey: rooms, walls, openings, furniture and the DCEL they come from.
@@ -336,6 +474,28 @@ class FloorPlan:
     diagnostics: tuple[Diagnostic, ...] = ()
     is_top: bool = False
     entry: int | None = None
+    core: StairCore | None = None
+    """The building's stair core when this storey is one it serves (set by make_floor)."""
+    core_room: int | None = None
+    """The room (face) the core occupies on this floor."""
+    stairs: tuple[Stair, ...] = ()
+    """Stairs that start or end on this floor (set once the storeys are stacked)."""
+
+    @property
+    def stair_up(self) -> Stair | None:
+        """The stair from this floor to the one above."""
+        return next((s for s in self.stairs if s.floors[0] == self.index), None)
+
+    @property
+    def stair_down(self) -> Stair | None:
+        """The stair arriving on this floor from the one below."""
+        return next((s for s in self.stairs if s.floors[1] == self.index), None)
+
+    @property
+    def stairwell(self) -> Polygon | None:
+        """The opening cut into this floor's slab for the stair below, if any."""
+        below = self.stair_down
+        return below.polygon if below is not None else None
 
     @property
     def floor_y(self) -> float:

@@ -257,8 +257,10 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                                        strict=strict, library=library,
                                        sandbox=sandbox).derive(lot)
             timings.update(derivation.timings)
+            from .building import stack_storeys
+
             scene = Scene(name=path.stem, seed=seed, units=derivation.units,
-                          terminals=derivation.terminals, source=path,
+                          terminals=stack_storeys(derivation.terminals), source=path,
                           diagnostics=list(derivation.diagnostics), timings=timings,
                           library=library)
             with progress.stage("meshing", "meshing…"):

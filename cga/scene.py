@@ -25,7 +25,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["ItemInfo", "NodeKind", "Scene", "SceneNode"]
 
-NodeKind = Literal["wall", "slab", "ceiling", "furniture", "mass", "face"]
+NodeKind = Literal["wall", "slab", "ceiling", "roof", "stair", "rail", "furniture", "mass", "face"]
 """What a scene node is; exporters colour and label by it."""
 
 
@@ -64,8 +64,8 @@ class SceneNode:
     """A named piece of output geometry, in world coordinates (metres, y up).
 
     ``path`` is the semantic node name, e.g. ``floor1/room3_Kitchen/wall2`` or
-    ``floor0/room1_Livingroom/furniture/sofa``. ``parts`` are the convex pieces of a
-    furniture item (physics uses them as a compound body); ``static`` bodies do not move.
+    ``floor0/room1_Livingroom/furniture/sofa``; ``kind`` is a :data:`NodeKind`. ``parts``
+    are the convex pieces of a furniture item (physics uses them as a compound body); ``static`` bodies do not move.
     ``item`` describes a furniture node (None for every other kind); ``extras`` are the
     labels of the other kinds (wall id, floor, shape path, ...), written to the glTF as
     they are. ``door`` is set on a door leaf: its hinge, angle and collision box

@@ -6,28 +6,40 @@ floor slice's footprint is cut by a randomised BSP over a half-edge structure in
 :class:`cga.model.FloorPlan` attached. Doors come later (``type_rooms``), and the 3D
 walls and slabs are made from the final plan at meshing time
 (:func:`cga.meshing.solids.floor_nodes`).
+
+Stairs (DESIGN §12): a storey of a stack of several (``repeated_split("y", ...)`` sets
+the ``floors`` attribute) first reserves the building's stair core, one rectangle in the
+same place on every storey (:func:`cga.operations.stairs.core_for_storey`), kept clear
+of the storey's corridors and next to them when it can be. The core is the first fixed
+face of the partition (never cut, circulation), typed ``Stair``; the partition is
+redrawn when its landing has no wall for a door. ``stair="none"`` builds storeys
+without one.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
 from cga.errors import DerivationError
-from cga.model import Diagnostic, FloorSettings
+from cga.model import Diagnostic, FloorPlan, FloorSettings, StairCore
 from cga.randomness import stream
 from cga.shape import Mass, Shape
 
 from cga.operation import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
-from .floorplan.bsp import partition
+from .floorplan.bsp import FixedFace, partition
 from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,
                                     circulation_faces)
 from .floorplan.errors import PartitionError
 from .floorplan.tiling import tile_with_fixed_faces
-from .roomtyping.doors import DOOR_MARGIN
+from .roomtyping.doors import DOOR_MARGIN, door_spans
+from .roomtyping.room_graph import door_sites
+from .stairs import STAIR_KINDS, StairParams, core_for_storey
+from .stairs.access import core_door_spans
 
 __all__ = ["MIN_CORRIDOR_WIDTH", "MakeFloor"]
 
@@ -70,6 +82,15 @@ class MakeFloor(Operation):
               doc="spine: rooms of equal width on the low side (0: the BSP decides)"),
         Param("n_right", "count", default=0, keyword_only=True,
               doc="spine: rooms of equal width on the high side (0: the BSP decides)"),
+        Param("stair", "string", default="U", keyword_only=True,
+              doc="stair between the storeys of a stack: 'U' (half landing), 'straight' "
+                  "(two storeys) or 'none'"),
+        Param("stair_width", "length", default=1.0, keyword_only=True,
+              doc="clear width of each flight (m)"),
+        Param("max_rise", "length", default=0.19, keyword_only=True,
+              doc="highest riser allowed (m)"),
+        Param("min_going", "length", default=0.25, keyword_only=True,
+              doc="shallowest tread allowed (m)"),
     )
     doc = ("make_floor(split, wallWidth, numWindows>windowWidth>windowHigh, doorWidth, "
            "doorHeight): partition a floor into split + 1 rooms")
@@ -117,29 +138,109 @@ class MakeFloor(Operation):
         except CirculationError as error:
             raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {error}",
                                   hint=_footprint_hint(footprint)) from None
+        core = _core(shape, args, ctx, footprint, mass.height, settings,
+                     [Polygon(f.polygon) for f in fixed])
+        if core is not None:
+            fixed = [_core_face(core, fixed), *fixed]
         # Rooms besides the circulation: split + 1; fixed rooms and free pieces count.
         cuts = split
         if fixed:
             pieces = tile_with_fixed_faces(ring, [f.polygon for f in fixed])[1]
             cuts = max(0, split + 1 - pieces - sum(not f.circulation for f in fixed))
         door_reach = settings.door_width + 2 * (DOOR_MARGIN + settings.wall_thickness)
-        try:
-            result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
-                               cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
-        except PartitionError as error:
-            raise DerivationError(f"make_floor cannot cut this footprint into rooms: {error}",
-                                  hint=_footprint_hint(footprint)) from None
+        for _ in range(_CORE_ATTEMPTS):
+            try:
+                result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
+                                   cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
+            except PartitionError as error:
+                raise DerivationError(f"make_floor cannot cut this footprint into rooms: {error}",
+                                      hint=_footprint_hint(footprint)) from None
+            try:
+                plan = plan_from_dcel(result.dcel, settings=settings, index=index,
+                                      elevation=mass.base, height=mass.height,
+                                      circulation=result.circulation)
+            except PartitionError as error:
+                raise DerivationError(f"the floor is too narrow for its walls: {error}") from None
+            if core is None:
+                break
+            plan = _with_core(plan, core)
+            if _core_has_door(plan):
+                break
+        else:
+            raise DerivationError(
+                f"no partition of floor {index} in {_CORE_ATTEMPTS} tries leaves a wall at the "
+                f"stair landing long enough for a {settings.door_width / ctx.units:g} door",
+                hint="make the doors narrower or the rooms fewer")
         if result.shortfall is not None:
             ctx.report(Diagnostic("warning", "make_floor",
                                   f"made {len(result.dcel.faces)} rooms instead of {split + 1}: "
                                   f"{result.shortfall}", floor=index))
-        try:
-            plan = plan_from_dcel(result.dcel, settings=settings, index=index,
-                                  elevation=mass.base, height=mass.height,
-                                  circulation=result.circulation)
-        except PartitionError as error:
-            raise DerivationError(f"the floor is too narrow for its walls: {error}") from None
         return [Child(successor=0, geometry=mass, scope=shape.scope, plan=plan)]
+
+
+_CORE_ATTEMPTS = 8
+"""Partitions drawn (from the storey's stream) until the stair landing has a door site."""
+
+
+def _core(shape: Shape, args: dict[str, Any], ctx: OperationContext, footprint: Polygon,
+          height: float, settings: FloorSettings, corridors: list[Polygon]) -> StairCore | None:
+    """The building's stair core when this storey is one of a stack of several."""
+    storeys = int(shape.attrs.get("floors", 1))
+    args = {**{p.name: p.default for p in MakeFloor.params if p.name.startswith(("stair", "max_", "min_"))},
+            **args}  # callers of apply() that predate the stair keywords
+    kind = str(args["stair"])
+    match = {k.lower(): k for k in STAIR_KINDS}.get(kind.lower())
+    if match is None:
+        raise DerivationError(f"stair must be one of {', '.join(map(repr, STAIR_KINDS))}, "
+                              f"got {kind!r}")
+    if storeys < 2 or match == "none":
+        return None
+    if match == "straight" and storeys > 2:
+        raise DerivationError(
+            f"a straight stair joins two storeys, but this building has {storeys}",
+            hint='use stair = "U": U stairs (half landing) stack through any number of storeys')
+    params = StairParams(kind=match, width=args["stair_width"], max_rise=args["max_rise"],  # type: ignore[arg-type]
+                         min_going=args["min_going"])
+    return core_for_storey(ctx.cache, ctx.seed, footprint, height, storeys, params,
+                           wall=settings.wall_thickness, door_width=settings.door_width,
+                           min_width=args["min_room_width"], corridors=corridors)
+
+
+def _core_face(core: StairCore, fixed: list[FixedFace]) -> FixedFace:
+    """The core as the partition's first fixed face (circulation, never cut).
+
+    Raises
+    ------
+    DerivationError
+        The building's core (placed by its first storey) overlaps this storey's corridor.
+    """
+    for face in fixed:
+        if Polygon(face.polygon).intersection(core.polygon).area > 1e-9:
+            raise DerivationError(
+                f"the building's stair core ({_bounds(core.polygon)}) overlaps this storey's "
+                f"{face.kind}: every storey of a stack must leave the core's place free",
+                hint="give the storeys the same corridor option, or stair = \"none\"")
+    ring = list(orient(core.polygon, sign=1.0).exterior.coords)[:-1]
+    return FixedFace(tuple((float(x), float(z)) for x, z in ring), circulation=True, kind="core")
+
+
+def _bounds(polygon: Polygon) -> str:
+    x0, z0, x1, z1 = polygon.bounds
+    return f"x {x0:.2f}..{x1:.2f}, z {z0:.2f}..{z1:.2f}"
+
+
+def _with_core(plan: FloorPlan, core: StairCore) -> FloorPlan:
+    """The plan with face 0, the core, typed ``Stair`` (a circulation room)."""
+    rooms = tuple(replace(r, type="Stair", circulation=True) if r.id == 0 else r
+                  for r in plan.rooms)
+    return plan.with_changes(rooms=rooms, core=core, core_room=0)
+
+
+def _core_has_door(plan: FloorPlan) -> bool:
+    """Whether a door fits between the stair landing and a neighbouring room."""
+    spans = core_door_spans(plan, door_spans(plan))
+    sites = door_sites(plan, spans, plan.settings.door_width)
+    return any(plan.core_room in pair for pair in sites.inner)
 
 
 def _corridor(args: dict[str, Any], units: float) -> CorridorSpec:

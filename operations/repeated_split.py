@@ -4,7 +4,9 @@ The extent along the axis is cut into ``n = max(1, round(extent / size))`` slice
 equal size (the remainder spread evenly; halves round up). The first slice goes to the
 first successor and every other slice to the last successor, so with one successor all
 slices share it. Each slice gets ``attrs["index"]`` = its number from 0; along ``y`` it
-also gets ``attrs["floor"]`` = the same number, which is how a mass becomes storeys.
+also gets ``attrs["floor"]`` = the same number and ``attrs["floors"]`` = the number of
+slices, which is how a mass becomes storeys (and how ``make_floor`` knows the storey is
+one of a stack that needs a stair).
 """
 
 from __future__ import annotations
@@ -53,7 +55,7 @@ class RepeatedSplit(Operation):
         last = ctx.successor_count - 1
         children = []
         for k, geometry, scope in pieces:
-            attrs = {"index": k, "floor": k} if axis == "y" else {"index": k}
+            attrs = {"index": k, "floor": k, "floors": n} if axis == "y" else {"index": k}
             children.append(Child(successor=0 if k == 0 else last, geometry=geometry,
                                   scope=scope, attrs=attrs))
         return children

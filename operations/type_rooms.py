@@ -13,9 +13,18 @@ docs/room_typing.md and thesis §3.3/§5.2. The work is split by concern under
 Entry and front door. The floor whose rule table has an ``isOutsideConnected`` rule gets
 the front door in that room's outer wall, if it is the ground floor (``index`` 0).
 Upper floors get no front door (it would open into the air); they are entered by the
-stair, which arrives in the room of the ``isOutsideConnected`` type when the floor has
-one, else in the largest room. The entry room is ``FloorPlan.entry``; every room is
-reachable from it.
+stair. The entry room is ``FloorPlan.entry``; every room is reachable from it.
+
+Stair core (DESIGN §12). A room ``make_floor`` typed already (the stair core, type
+``Stair``) keeps its type and is not offered to the rules. Its doors may only open
+beside its landing (:mod:`cga.operations.stairs.access`). On an upper floor the core is
+the entry (the stair arrives there) and the ``isOutsideConnected`` type is placed next
+to the landing, so the stair opens into it (the landing hall of the house rules); on the
+ground floor that type is placed, when it can be, both on an outer wall (front door)
+and next to the landing. The core gets one ``"stair"`` door into that room, else into a
+circulation room, else the largest neighbour. A floor without a core (single storey)
+that is not the ground floor is entered in its ``isOutsideConnected`` room, else the
+largest.
 """
 
 from __future__ import annotations
@@ -40,6 +49,7 @@ from .roomtyping.doors import (Interval, clear_windows, door_centre, door_openin
 from .roomtyping.room_graph import (DoorSites, Pair, door_sites, reachability_pairs, room_graph,
                                     rule_pairs)
 from .roomtyping.rules import RuleTable, load_rule_table
+from .stairs.access import core_door_spans
 
 __all__ = ["DOOR_POSITIONS", "DoorPosition", "TypeRooms", "type_plan"]
 
@@ -95,23 +105,35 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     if door_position not in DOOR_POSITIONS:
         raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
     width = plan.settings.door_width
-    sites = door_sites(plan, door_spans(plan), width)
-    ids = tuple(room.id for room in plan.rooms)
+    sites = door_sites(plan, core_door_spans(plan, door_spans(plan)), width)
+    fixed = {room.id: room.type for room in plan.rooms if room.type is not None}
+    free = [room for room in plan.rooms if room.id not in fixed]
+    ids = tuple(room.id for room in free)
     wants_front_door = table.outside_rule is not None and plan.index == 0
-    rooms = RoomSet(areas=tuple(room.area for room in plan.rooms),
-                    adjacency=sites.adjacency(ids),
-                    entrances=(frozenset(i for i, room in enumerate(ids) if room in sites.outer)
-                               if wants_front_door else None),
-                    ids=ids)
-    typing = assign_types(rooms, table, rng, area_scale=units ** 2)
+    landing = _landing_neighbours(plan, sites)
+    typing = None
+    for entrances in _entrance_choices(ids, sites, wants_front_door, landing):
+        rooms = RoomSet(areas=tuple(room.area for room in free), adjacency=sites.adjacency(ids),
+                        entrances=entrances, ids=ids)
+        try:
+            typing = assign_types(rooms, table, rng, area_scale=units ** 2)
+            break
+        except NoSolutionError:
+            if entrances is None or (wants_front_door and landing is None):
+                raise
+            continue  # next: the same rules without asking for the stair landing
+    assert typing is not None
     notes = [Diagnostic(n.level, _STAGE, n.message, floor=plan.index, room=n.room)
              for n in typing.notes]
-    types = dict(zip(ids, typing.types))
+    types = {**dict(zip(ids, typing.types)), **fixed}
     typed = plan.with_changes(rooms=tuple(replace(r, type=types[r.id]) for r in plan.rooms))
 
-    front_room, entry, entry_notes = _entry(typed, table, typing, sites, wants_front_door)
+    front_room, entry, entry_notes = _entry(typed, table, typing, ids, sites, wants_front_door)
     notes += entry_notes
     pairs = rule_pairs(types, sites, table)
+    stair_pair = _stair_pair(typed, table, typing, ids, sites)
+    if stair_pair is not None:
+        pairs.append(stair_pair)
     extra = reachability_pairs(typed.rooms, pairs, sites, entry=entry)
     if extra and strict:
         raise _unreachable_error(typed, pairs, sites, table, entry)
@@ -128,7 +150,9 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         for pair in chosen:
             wall, interval = sites.inner[pair][0]
             centre = door_centre(interval, width, rng, door_position)
-            doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, reason))
+            kind: Literal["rule", "reachability", "stair"] = (
+                "stair" if pair == stair_pair else reason)  # type: ignore[assignment]
+            doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, kind))
             if reason == "reachability":
                 notes.append(_reachability_note(typed, pair, table))
     doors = with_door_states(doors, door_state, rng)
@@ -158,25 +182,25 @@ def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Wi
 
 def _add_door(door_id: int, walls: dict[int, Wall], wall_id: int, centre: float,
               rooms: tuple[int, int], plan: FloorPlan,
-              reason: Literal["rule", "reachability", "front"]) -> Door:
+              reason: Literal["rule", "reachability", "front", "stair"]) -> Door:
     door = make_door(door_id, walls[wall_id], centre, rooms, plan, reason=reason)
     walls[wall_id] = walls[wall_id].with_opening(door_opening(door, plan))
     return door
 
 
-def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, sites: DoorSites,
-           wants_front_door: bool) -> tuple[int | None, int, list[Diagnostic]]:
+def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, ids: Sequence[int],
+           sites: DoorSites, wants_front_door: bool) -> tuple[int | None, int, list[Diagnostic]]:
     """(front-door room or None, entry room, notes): see the module notes."""
     outside = table.outside_rule
     placed = None
     if outside is not None and outside.type in typing.mandatory:
-        placed = plan.rooms[typing.mandatory[outside.type]].id
+        placed = ids[typing.mandatory[outside.type]]
     by_size = sorted(plan.rooms, key=lambda r: (-r.area, r.id))
     notes: list[Diagnostic] = []
     if wants_front_door and outside is not None:
         if placed is not None:
             return placed, placed, notes
-        candidates = [r for r in by_size if r.id in sites.outer]
+        candidates = [r for r in by_size if r.id in sites.outer and r.id != plan.core_room]
         if not candidates:
             raise NoSolutionError(
                 f"floor {plan.index} has no outer wall long enough for a "
@@ -187,6 +211,12 @@ def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, sites: DoorSites,
             f"with an outer wall for it: room {room.id} ({room.type})"),
             floor=plan.index, room=room.id))
         return room.id, room.id, notes
+    if plan.core_room is not None and plan.index > 0:
+        notes.append(Diagnostic("info", _STAGE, (
+            f"upper floor: no front door; the stair arrives in its core, room "
+            f"{plan.core_room}"), floor=plan.index, room=plan.core_room))
+        return None, plan.core_room, notes
+    by_size = [r for r in by_size if r.id != plan.core_room]
     entry = placed if placed is not None else by_size[0].id
     if outside is None and plan.index == 0:
         notes.append(Diagnostic("warning", _STAGE, (
@@ -197,6 +227,51 @@ def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, sites: DoorSites,
             f"upper floor: no front door; the stair arrives in room {entry} "
             f"({plan.room(entry).type})"), floor=plan.index, room=entry))
     return None, entry, notes
+
+
+def _landing_neighbours(plan: FloorPlan, sites: DoorSites) -> frozenset[int] | None:
+    """Rooms that can take a door from the stair landing (None: the floor has no core)."""
+    if plan.core_room is None:
+        return None
+    return frozenset(sum(pair) - plan.core_room for pair in sites.inner if plan.core_room in pair)
+
+
+def _entrance_choices(ids: Sequence[int], sites: DoorSites, front_door: bool,
+                      landing: frozenset[int] | None) -> list[frozenset[int] | None]:
+    """Rooms the ``isOutsideConnected`` rule may take, most wanted first (as indices
+    into ``ids``): by the front door and the stair landing, then by either alone."""
+    outer = frozenset(i for i, room in enumerate(ids) if room in sites.outer)
+    near = (frozenset(i for i, room in enumerate(ids) if room in landing)
+            if landing is not None else None)
+    if front_door:
+        return [outer & near, outer] if near else [outer]
+    return [near, None] if near else [None]
+
+
+def _stair_pair(plan: FloorPlan, table: RuleTable, typing: Typing, ids: Sequence[int],
+                sites: DoorSites) -> tuple[int, int] | None:
+    """The room pair of the core's door: into the ``isOutsideConnected`` room, else a
+    circulation room, else the largest neighbour of the landing.
+
+    Raises
+    ------
+    NoSolutionError
+        The landing has no wall that takes a door (make_floor redraws such partitions,
+        so only hand-made plans get here).
+    """
+    core = plan.core_room
+    if core is None:
+        return None
+    outside = table.outside_rule
+    placed = typing.mandatory.get(outside.type) if outside is not None else None
+    placed_id = ids[placed] if placed is not None else None
+    neighbours = sorted(_landing_neighbours(plan, sites) or ())
+    if not neighbours:
+        raise NoSolutionError(f"the stair core (room {core}) of floor {plan.index} has no wall "
+                              "at its landing long enough for a door")
+    best = min(neighbours, key=lambda r: (r != placed_id, not plan.room(r).circulation,
+                                          -plan.room(r).area, r))
+    return (min(core, best), max(core, best))
 
 
 def _describe(room: Room) -> str:

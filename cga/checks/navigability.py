@@ -6,10 +6,17 @@ band (:mod:`cga.checks.occupancy`), grows every obstacle by the robot's radius (
 Euclidean distance transform: a cell is drivable when its clearance, the distance from
 its centre to the nearest obstacle, is at least the radius), and floods the drivable
 cells from the start. The ground floor starts outside its front door, so a wardrobe in
-front of the door shows up as the door being blocked. Floors without a front door start
-in their entry room, where ``type_rooms`` says the stair arrives
-(``FloorPlan.entry``), or, on an untyped floor, in the largest room: the model
-has no stair geometry yet, and the report says so.
+front of the door shows up as the door being blocked.
+
+The building is one check (DESIGN §12): floors are taken bottom up, and a floor reached
+by a stair starts on the stair's top landing, but only when the robot reached the
+stair's bottom landing on the floor below and the stair is wide enough for it
+(``2 × radius``). Steps and stairwells are obstacles on the grids (wheels do not climb);
+the stair is the edge between the two landing cells. A floor whose stair cannot be used
+reports every room unreachable and says where: the bottom landing it never reached, or
+the top landing that is blocked (and by what). A floor with neither a front door nor a
+stair (a building without stairs) starts in its entry room, or the largest room, and
+the report says so.
 
 Doors: a robot (or its planner) can open a door, so a room counts as reachable through
 any door whatever its state; the report also says which rooms the robot reaches with the
@@ -41,12 +48,13 @@ from scipy.sparse.csgraph import breadth_first_order, minimum_spanning_tree
 from shapely.geometry import Point
 from shapely.geometry.base import BaseGeometry
 
-from cga.model import OUTSIDE, Door, FloorPlan, Room
+from cga.model import OUTSIDE, Door, FloorPlan, Room, Stair
 from cga.scene import Scene, SceneNode
 
 from .occupancy import OccupancyGrid, occupancy_grid
 
 __all__ = [
+    "Arrival",
     "FloorReach",
     "NavigabilityReport",
     "Bottleneck",
@@ -84,6 +92,16 @@ class Bottleneck:
         return {"clearance_m": round(self.clearance, 3), "width_m": round(self.width, 3),
                 "at": [round(self.at[0], 3), round(self.at[1], 3)], "door": self.door,
                 "room": self.room}
+
+
+@dataclass(frozen=True)
+class Arrival:
+    """How the robot comes onto a floor by stair: ``stair`` and the stairs before it
+    (``via``, from the ground floor up); ``problem`` says why it cannot (None: it can)."""
+
+    stair: Stair
+    via: tuple[int, ...]
+    problem: str | None = None
 
 
 @dataclass(frozen=True)
@@ -125,9 +143,11 @@ class RoomReach:
 @dataclass(frozen=True)
 class FloorReach:
     """One floor's result. ``start`` is ``"front_door"`` (the robot starts outside door
-    ``start_door``), ``"entry_room"`` (inside ``start_room``, the room typing made the
-    floor's entry) or ``"largest_room"`` (untyped floors); ``note`` says why.
-    ``closed_doors`` are the doors the build leaves closed or ajar.
+    ``start_door``), ``"stair"`` (on the top landing of the stair ``via_stairs[-1]``, in
+    its core room ``start_room``), ``"entry_room"`` (inside ``start_room``, the room
+    typing made the floor's entry: floors without a stair) or ``"largest_room"``
+    (untyped floors); ``note`` says why. ``closed_doors`` are the doors the build
+    leaves closed or ajar.
     ``elapsed_seconds`` (wall-clock) is left out of :meth:`to_dict`, which is deterministic."""
 
     floor: int
@@ -139,6 +159,10 @@ class FloorReach:
     rooms: tuple[RoomReach, ...]
     elapsed_seconds: float
     closed_doors: tuple[int, ...] = ()
+    via_stairs: tuple[int, ...] = ()
+    """The stairs on the way from the front door to this floor, bottom up."""
+    stair_up_reached: bool | None = None
+    """Whether the robot reaches the bottom landing of the stair leaving this floor."""
 
     @property
     def passed(self) -> bool:
@@ -156,6 +180,8 @@ class FloorReach:
             "start_point": [round(self.start_point[0], 3), round(self.start_point[1], 3)],
             "start_room": self.start_room,
             "start_door": self.start_door,
+            "via_stairs": list(self.via_stairs),
+            "stair_up_reached": self.stair_up_reached,
             "note": self.note,
             "reachable_rooms": [r.room for r in self.rooms if r.reachable],
             "unreachable_rooms": [r.room for r in self.unreachable],
@@ -241,21 +267,51 @@ def check_navigability(scene: Scene, nodes: Sequence[SceneNode] | None = None, *
         raise ValueError(f"check_navigability: radius must be positive, got {radius!r}")
     if nodes is None:
         nodes = scene.nodes
-    floors = tuple(check_floor_navigability(plan, nodes, radius=radius, resolution=resolution,
-                                            band=band) for plan in scene.floors)
-    return NavigabilityReport(floors=floors, radius=radius, resolution=resolution, band=band)
+    floors: list[FloorReach] = []
+    landings: dict[int, tuple[FloorReach, Stair]] = {}  # stair id → the floor it leaves
+    for plan in scene.floors:
+        arrival = _arrival(plan, landings, radius)
+        reach = check_floor_navigability(plan, nodes, radius=radius, resolution=resolution,
+                                         band=band, arrival=arrival)
+        floors.append(reach)
+        if plan.stair_up is not None:
+            landings[plan.stair_up.id] = (reach, plan.stair_up)
+    return NavigabilityReport(floors=tuple(floors), radius=radius, resolution=resolution,
+                              band=band)
+
+
+def _arrival(plan: FloorPlan, landings: dict[int, tuple[FloorReach, Stair]],
+             radius: float) -> Arrival | None:
+    """How the robot may come onto ``plan`` by the stair arriving there (None: no stair)."""
+    stair = plan.stair_down
+    if stair is None or plan.front_door() is not None:
+        return None
+    below, _ = landings.get(stair.id, (None, stair))
+    lower = stair.floors[0]
+    via = (below.via_stairs if below is not None else ()) + (stair.id,)
+    x, z = stair.landing_points[0]
+    if below is None or not below.stair_up_reached:
+        return Arrival(stair, via, f"the only way up is stair {stair.id} from floor {lower}, "
+                                   f"whose bottom landing at ({x:.2f}, {z:.2f}) on floor "
+                                   f"{lower} the robot does not reach")
+    if stair.width < 2 * radius:
+        return Arrival(stair, via, f"stair {stair.id} from floor {lower} is {stair.width:.2f} m "
+                                   f"wide, too narrow for a robot of radius {radius:g} m")
+    return Arrival(stair, via)
 
 
 def check_floor_navigability(plan: FloorPlan, nodes: Sequence[SceneNode], *,
                              radius: float = 0.25, resolution: float = 0.05,
-                             band: tuple[float, float] = (0.05, 1.2)) -> FloorReach:
-    """The navigability of one floor (see :func:`check_navigability`)."""
+                             band: tuple[float, float] = (0.05, 1.2),
+                             arrival: Arrival | None = None) -> FloorReach:
+    """The navigability of one floor (see :func:`check_navigability`); ``arrival`` is
+    the stair the robot comes up by, when the floor has no front door."""
     if not resolution > 0:
         raise ValueError(f"check_navigability: resolution must be positive, got {resolution!r}")
     started = time.perf_counter()
     margin = max(0.5, plan.settings.wall_thickness / 2 + 2 * radius + 4 * resolution)
     grid = occupancy_grid(plan, nodes, resolution=resolution, band=band, margin=margin)
-    return _FloorCheck(plan, grid, radius).run(started)
+    return _FloorCheck(plan, grid, radius, arrival).run(started)
 
 
 def _path_minima(values: np.ndarray, parent: np.ndarray, root: int) -> tuple[np.ndarray, np.ndarray]:
@@ -284,12 +340,16 @@ def _path_minima(values: np.ndarray, parent: np.ndarray, root: int) -> tuple[np.
 class _FloorCheck:
     """The state of one floor's check: grids, clearances, labels, room masks."""
 
-    def __init__(self, plan: FloorPlan, grid: OccupancyGrid, radius: float):
+    def __init__(self, plan: FloorPlan, grid: OccupancyGrid, radius: float,
+                 arrival: Arrival | None = None):
         self.plan = plan
         self.grid = grid
         self.radius = radius
         self.res = grid.resolution
         self.front = plan.front_door()
+        self.arrival = arrival
+        self.start_problem: str | None = None
+        self.start_items: list[str] = []
         outside_blocked = np.zeros(grid.shape, dtype=bool) if self.front else ~grid.free_mask
         self.furniture = [o for o in grid.obstacles if o.kind == "furniture" and o.door is None]
         structure = grid.occupied_by(o.path for o in grid.obstacles if o.kind != "furniture")
@@ -318,7 +378,7 @@ class _FloorCheck:
 
     def run(self, started: float) -> FloorReach:
         start_kind, start_point, start_room, note = self._start()
-        cell = self._start_cell(start_point)
+        cell = self._landing_cell() if start_kind == "stair" else self._start_cell(start_point)
         as_built = np.zeros(self.grid.shape, dtype=bool)
         if cell is not None:
             self.reached = self.labels == self.labels[cell]
@@ -342,11 +402,16 @@ class _FloorCheck:
             reasons, doors, items = self._why(room, cell, reachable, start_kind)
             rooms.append(RoomReach(room.id, room.type, False, fraction, None, tuple(reasons),
                                    tuple(doors), tuple(items), reachable_as_built=False))
+        up = self.plan.stair_up
+        landing_reached = (bool((self.grid.rasterise(up.landings[0]) & reached).any())
+                           if up is not None else None)
         return FloorReach(floor=self.plan.index, start=start_kind, start_point=start_point,
                           start_room=start_room,
                           start_door=self.front.id if self.front else None, note=note,
                           rooms=tuple(rooms), elapsed_seconds=time.perf_counter() - started,
-                          closed_doors=tuple(d.id for d in self.plan.doors if not d.passable))
+                          closed_doors=tuple(d.id for d in self.plan.doors if not d.passable),
+                          via_stairs=self.arrival.via if self.arrival else (),
+                          stair_up_reached=landing_reached)
 
     # -- the start ---------------------------------------------------------------------
 
@@ -355,6 +420,13 @@ class _FloorCheck:
             inside = next((r for r in self.front.rooms if r != OUTSIDE), None)
             return ("front_door", self._outside_of(self.front), inside,
                     f"the robot starts outside front door {self.front.id}")
+        if self.arrival is not None:
+            stair = self.arrival.stair
+            x, z = stair.landing_points[1]
+            self.start_problem = self.arrival.problem
+            return ("stair", (x, z), stair.rooms[1],
+                    f"the robot comes up stair {stair.id} from floor {stair.floors[0]} and "
+                    f"starts on its top landing at ({x:.2f}, {z:.2f})")
         why = ("upper floor" if self.plan.index > 0 else "floor without a front door")
         kind: StartKind
         if self.plan.entry is not None:
@@ -366,7 +438,7 @@ class _FloorCheck:
         where = np.where(self.masks[room.id], self.clear, -np.inf)
         row, col = np.unravel_index(int(np.argmax(where)), where.shape)
         return (kind, self.grid.cell_to_world(int(row), int(col)), room.id,
-                f"{why}: the model has no stair geometry, so the robot starts in {which} "
+                f"{why} without a stair: the robot starts in {which} "
                 f"(room {room.id}, {room.area:.1f} m²), at its most open point")
 
     def _outside_of(self, door: Door) -> tuple[float, float]:
@@ -380,6 +452,29 @@ class _FloorCheck:
         reach = wall.thickness / 2 + self.radius + 3 * self.res
         point = centre + normal * reach
         return (float(point[0]), float(point[1]))
+
+    def _landing_cell(self) -> tuple[int, int] | None:
+        """The drivable cell of the arrival's top landing nearest where the stair ends,
+        or None (with ``start_problem`` set) when the stair cannot be used."""
+        assert self.arrival is not None
+        if self.start_problem is not None:
+            return None
+        stair = self.arrival.stair
+        landing = self.grid.rasterise(stair.landings[1]) & self.drivable
+        x, z = stair.landing_points[1]
+        if not landing.any():
+            area = self.grid.rasterise(stair.landings[1])
+            self.start_items = self._items_touching(area)
+            self.start_problem = (
+                f"the only way up is stair {stair.id} from floor {stair.floors[0]}, and its top "
+                f"landing at ({x:.2f}, {z:.2f}) on floor {self.plan.index} is blocked"
+                + (f" by {', '.join(self.start_items)}" if self.start_items else
+                   f" (no room for a robot of radius {self.radius:g} m)"))
+            return None
+        rows, cols = np.nonzero(landing)
+        row, col = self.grid.world_to_cell(x, z)
+        k = int(np.argmin((rows - row) ** 2 + (cols - col) ** 2))
+        return int(rows[k]), int(cols[k])
 
     def _start_cell(self, point: tuple[float, float]) -> tuple[int, int] | None:
         """The drivable cell at (or, within one robot radius, nearest to) ``point``."""
@@ -479,6 +574,8 @@ class _FloorCheck:
              start_kind: str) -> tuple[list[str], list[int], list[str]]:
         """Reasons, blocked door ids and blocking item paths of an unreachable room."""
         if cell is None:
+            if self.start_problem is not None:
+                return [self.start_problem], [], list(self.start_items)
             where = "outside the front door" if start_kind == "front_door" else "in the start room"
             return [f"the robot has no room to start {where}"], [], []
         mask = self.masks[room.id]

@@ -23,6 +23,8 @@ a closed leaf shuts its doorway on the map, an open one stands against its jamb;
 shadow is that of its collision box (:mod:`cga.doors`), the one every robot format uses.
 ``include_doors=False`` draws the building with every door open, which the navigability
 check uses to tell rooms cut off from rooms behind a door the robot must open.
+Stairs are obstacles except their floor landings, whatever part of them lies in the
+band (:func:`stair_obstacles`).
 """
 
 from __future__ import annotations
@@ -49,6 +51,7 @@ __all__ = [
     "band_footprint",
     "occupancy_grid",
     "obstacle_nodes",
+    "stair_obstacles",
 ]
 
 _TO_PLAN = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, -1.0, 0.0, 0.0]])
@@ -326,9 +329,29 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
                                   node.item.room if node.item is not None else None,
                                   node.door.door if node.door is not None else None))
         _paint(occupied, footprint, x_min, z_min, resolution)
+    for obstacle in stair_obstacles(plan):
+        obstacles.append(obstacle)
+        _paint(occupied, obstacle.footprint, x_min, z_min, resolution)
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
                          resolution=resolution, floor=plan.index, band=(y0, y1),
                          obstacles=tuple(obstacles))
+
+
+def stair_obstacles(plan: FloorPlan) -> list[Obstacle]:
+    """The stairs on this floor as obstacles, all but their floor landings (DESIGN §12):
+    the flights and half landing of the stair leaving it (``floor{i}/stair{k}/flights``,
+    kind ``"stair"``) and the stairwell of the stair arriving (``floor{i}/stairwell{k}``,
+    kind ``"stairwell"``). A wheeled robot cannot drive up steps or over the hole; it
+    changes floors at the landings (:mod:`cga.checks.navigability`)."""
+    out = []
+    up, down = plan.stair_up, plan.stair_down
+    if up is not None:
+        out.append(Obstacle(f"floor{plan.index}/stair{up.id}/flights", "stair", up.polygon,
+                            {"floor": plan.index, "stair": up.id}))
+    if down is not None:
+        out.append(Obstacle(f"floor{plan.index}/stairwell{down.id}", "stairwell", down.polygon,
+                            {"floor": plan.index, "stair": down.id}))
+    return out
 
 
 def _meets(node: SceneNode, y0: float, y1: float, extent: BaseGeometry) -> bool:

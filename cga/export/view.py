@@ -3,7 +3,7 @@
 Robot researchers and grammar authors want a quick look at a build without opening a
 viewer. This renders the scene's nodes from an elevated three-quarter view as a
 "doll's house": every storey is cut at ``cut_height`` above its walking surface and
-ceilings are left out, so rooms and furniture are visible from above. Triangles are
+ceilings and roofs are left out, so rooms and furniture are visible from above. Triangles are
 flat-shaded with one directional light and rasterised with
 a small z-buffer at 2× size, then downsampled for anti-aliasing. Storeys are drawn side by side.
 
@@ -72,7 +72,7 @@ def _face_colors(node: SceneNode, mesh: trimesh.Trimesh) -> np.ndarray:
 def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):
     tris, colors = [], []
     for node in nodes:
-        if node.kind == "ceiling":
+        if node.kind in ("ceiling", "roof"):
             continue
         mesh = node.mesh if cut_y is None else _cut(node.mesh, cut_y)
         if mesh is None or len(mesh.faces) == 0:

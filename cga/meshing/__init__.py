@@ -7,6 +7,7 @@ read those nodes and never mesh again (docs/architecture.md, "Meshing").
 
 * :mod:`.shapes`: terminal masses and faces of massing grammars;
 * :mod:`.solids`: a storey's walls (openings cut), floor slab and roof slab;
+* :mod:`.stairs`: the stair leaving a storey and the rail of the stairwell arriving on it;
 * :mod:`.items`: furniture items, their library models posed in the world.
 
 The storey modules are imported only when a scene has floors, so massing builds never
@@ -44,7 +45,7 @@ def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[Sce
     -------
     list of SceneNode
         Masses and faces named by shape path; for each storey its floor solids
-        (walls, slab, ceiling, ...) followed by its furniture.
+        (walls, slab, roof), its stair and stairwell rail, then its furniture.
     """
     nodes: list[SceneNode] = []
     for shape in scene.terminals:
@@ -53,9 +54,11 @@ def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[Sce
             continue
         from .items import item_node
         from .solids import floor_nodes
+        from .stairs import stair_nodes
 
         library = library or scene.library or _grammar_library(scene)
         nodes.extend(floor_nodes(shape.plan))
+        nodes.extend(stair_nodes(shape.plan))
         nodes.extend(item_node(item, shape.plan, library) for item in shape.plan.furniture)
     return nodes
 

@@ -11,8 +11,9 @@ solids are built last, from whatever openings the walls carry then (docs/archite
   together fill the footprint minus the rooms' interiors;
 * doors and windows are boxes subtracted with manifold3d, so every wall stays a
   watertight solid;
-* the floor slab fills the footprint below the walking surface; the top storey also gets
-  a roof slab on top of its walls (lower storeys are covered by the next floor's slab).
+* the floor slab fills the footprint below the walking surface, less the stairwell of a
+  stair arriving from below (DESIGN §12); the top storey (``is_top``) also gets a roof
+  slab on top of its walls (lower storeys are covered by the next floor's slab).
 """
 
 from __future__ import annotations
@@ -107,8 +108,9 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
         One ``"wall"`` node per wall, at ``floor{index}/{room label}/wall{id}`` under the
         wall's lower-id room, with extras ``wall_id``, ``outer``, ``rooms`` (the room ids,
         the outside omitted) and ``openings`` (how many were cut); then
-        ``floor{index}/slab`` (``"slab"``) and, when ``plan.is_top``,
-        ``floor{index}/ceiling`` (``"ceiling"``). Every mesh is watertight.
+        ``floor{index}/slab`` (``"slab"``, with the stairwell cut out; extra
+        ``stairwell``: the stair's id or None) and, when ``plan.is_top``,
+        ``floor{index}/roof`` (``"roof"``). Every mesh is watertight.
 
     Notes
     -----
@@ -136,11 +138,14 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
             "wall_id": wall.id, "outer": wall.outer, "rooms": rooms,
             "openings": len(wall.openings)}))
     slab = plan.settings.slab_thickness
+    well = plan.stairwell
+    floor_area = plan.footprint if well is None else plan.footprint.difference(well)
     nodes.append(SceneNode(f"floor{plan.index}/slab", "slab",
-                           _trimesh(*_prism(plan.footprint, plan.elevation, y0)),
-                           extras={"floor": plan.index}))
+                           _trimesh(*_prism(floor_area, plan.elevation, y0)),
+                           extras={"floor": plan.index,
+                                   "stairwell": plan.stair_down.id if well is not None else None}))
     if plan.is_top:
-        nodes.append(SceneNode(f"floor{plan.index}/ceiling", "ceiling",
+        nodes.append(SceneNode(f"floor{plan.index}/roof", "roof",
                                _trimesh(*_prism(plan.footprint, top, top + slab)),
                                extras={"floor": plan.index}))
     return nodes

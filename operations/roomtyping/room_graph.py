@@ -45,10 +45,13 @@ class DoorSites:
     outer: Mapping[int, tuple[tuple[Wall, Interval], ...]]
 
     def adjacency(self, room_ids: Sequence[int]) -> tuple[frozenset[int], ...]:
-        """Door-capable neighbours of each room, as indices into ``room_ids``."""
+        """Door-capable neighbours of each room, as indices into ``room_ids`` (pairs
+        with a room not in ``room_ids`` are left out)."""
         index = {room: i for i, room in enumerate(room_ids)}
         neighbours: list[set[int]] = [set() for _ in room_ids]
         for a, b in self.inner:
+            if a not in index or b not in index:
+                continue  # a room left out (the stair core is not typed by the rules)
             neighbours[index[a]].add(index[b])
             neighbours[index[b]].add(index[a])
         return tuple(frozenset(n) for n in neighbours)

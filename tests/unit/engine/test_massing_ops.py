@@ -181,7 +181,7 @@ def test_slice_count(total, size, n):
 def test_repeated_split_floors_first_and_rest():
     children = RepeatedSplit().apply(mass_shape(height=10), {"axis": "y", "size": 3.0}, ctx(2))
     assert [c.successor for c in children] == [0, 1, 1]
-    assert [c.attrs for c in children] == [{"index": i, "floor": i} for i in range(3)]
+    assert [c.attrs for c in children] == [{"index": i, "floor": i, "floors": 3} for i in range(3)]
     assert [c.geometry.height for c in children] == pytest.approx([10 / 3] * 3)
     assert children[-1].geometry.base + children[-1].geometry.height == 10
 

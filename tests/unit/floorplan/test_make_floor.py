@@ -150,7 +150,11 @@ def test_storeys_through_the_evaluator():
         result = derive(grammar, seed=seed)
         plans = sorted((s.plan for s in result.terminals), key=lambda p: p.index)
         assert [(p.index, p.elevation, p.height) for p in plans] == [(0, 0.0, 3.0), (1, 3.0, 3.0)]
-        assert [len(p.rooms) for p in plans] == [6, 5]
+        # split + 1 rooms, plus the stair core reserved in the same place on both storeys
+        assert [len(p.rooms) for p in plans] == [7, 6]
+        cores = [p.room(p.core_room) for p in plans]
+        assert [(c.type, c.circulation) for c in cores] == [("Stair", True)] * 2
+        assert cores[0].polygon.symmetric_difference(cores[1].polygon).area < 1e-9
         assert result.diagnostics == []
         for p in plans:
             validate_plan(p)

@@ -42,15 +42,15 @@ def test_node_paths_kinds_and_extras():
                                "openings": len(w.openings)}
 
 
-def test_typed_rooms_name_the_path_and_top_floor_gets_a_ceiling():
+def test_typed_rooms_name_the_path_and_top_floor_gets_a_roof():
     plan = three_rooms(is_top=True)
     plan = plan.with_changes(rooms=tuple(replace(r, type="Kitchen") if r.id == 2 else r for r in plan.rooms))
     nodes = floor_nodes(plan)
     paths = [n.path for n in nodes]
     assert "floor1/room2_Kitchen/wall9" in paths and "floor1/room0/wall0" in paths
-    ceiling = next(n for n in nodes if n.kind == "ceiling")
-    assert ceiling.path == "floor1/ceiling"
-    assert ceiling.mesh.bounds.ravel() == pytest.approx([0, 6.0, 0, 14, 6.2, 10])
+    roof = next(n for n in nodes if n.kind == "roof")
+    assert roof.path == "floor1/roof"
+    assert roof.mesh.bounds.ravel() == pytest.approx([0, 6.0, 0, 14, 6.2, 10])
     slab = next(n for n in nodes if n.kind == "slab")
     assert slab.mesh.bounds.ravel() == pytest.approx([0, 3.0, 0, 14, 3.2, 10])
 

@@ -1,0 +1,64 @@
+"""Joining a building's storeys once they are derived (DESIGN §12).
+
+The grammar derives each storey on its own (``repeated_split("y", ...)`` then
+``make_floor`` per storey), so facts that span storeys are settled here, after the
+derivation and before the Scene is made:
+
+* the top storey: a storey is the top one when no storey of the next index stands on
+  its footprint; it gets ``is_top`` (and so a roof slab);
+* the stairs: two consecutive storeys that reserved the same stair core (``make_floor``
+  registers one core per building, see :func:`cga.operations.stairs.core_for_storey`)
+  are joined by a :class:`~cga.model.Stair` laid out in it, which both plans list in
+  ``stairs`` (the upper one cuts its stairwell from it).
+
+Stair ids count from 0 up the building, in floor order.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from .model import FloorPlan, Stair
+from .shape import Shape
+
+__all__ = ["stack_storeys", "stack_plans"]
+
+
+def stack_plans(plans: Sequence[FloorPlan]) -> list[FloorPlan]:
+    """The plans with ``is_top`` and ``stairs`` set, in the given order.
+
+    Raises
+    ------
+    DerivationError
+        Two storeys share a core but are not as far apart as its stair climbs.
+    """
+    from cga.operations.stairs import stair_between
+
+    order = sorted(range(len(plans)), key=lambda i: plans[i].index)
+    stairs: dict[int, list[Stair]] = {i: [] for i in range(len(plans))}
+    tops = {i: True for i in range(len(plans))}
+    count = 0
+    for i in order:
+        lower = plans[i]
+        for j in order:
+            upper = plans[j]
+            if upper.index != lower.index + 1:
+                continue
+            if upper.footprint.intersection(lower.footprint).area > 1e-9:
+                tops[i] = False
+            if lower.core is not None and lower.core == upper.core:
+                stair = stair_between(lower.core, lower, upper, count)
+                count += 1
+                stairs[i].append(stair)
+                stairs[j].append(stair)
+    return [p.with_changes(is_top=tops[i], stairs=tuple(stairs[i])) for i, p in enumerate(plans)]
+
+
+def stack_storeys(terminals: Sequence[Shape]) -> list[Shape]:
+    """The terminal shapes with their storeys' plans stacked (:func:`stack_plans`)."""
+    at = [k for k, shape in enumerate(terminals) if shape.plan is not None]
+    plans = stack_plans([terminals[k].plan for k in at])  # type: ignore[misc]
+    out = list(terminals)
+    for k, plan in zip(at, plans):
+        out[k] = out[k].derive(plan=plan)
+    return out

@@ -1,0 +1,235 @@
+"""Sizing a stair and placing a building's stair core (DESIGN §12).
+
+A storey of height ``H`` is climbed in ``n = ceil(H / max_rise)`` risers (even for a U
+stair, so both flights match) of ``rise = H / n``; the going follows Blondel's step rule
+``2 · rise + going ≈ 0.63 m``, never less than ``min_going``. A U stair (half landing)
+runs two flights side by side with a well between them; a straight stair one flight.
+
+The core is the rectangle that holds the floor landing, the flight(s) and the half (or
+top) landing, plus the walls around it. It stands against the footprint's boundary, so
+the rest of the storey stays one simple polygon for the BSP, and its landing end faces
+the inside of the building. The place is chosen once per building from the build seed
+and the footprint (:func:`core_for_storey`), so every storey of the stack reserves the
+same rectangle before it is partitioned; the MSU seed (procedural-interiors-msu.txt)
+likewise puts "a stair on every floor but the last".
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+import shapely
+from shapely.geometry import Point, Polygon
+from shapely.geometry.polygon import orient
+
+from cga.errors import DerivationError
+from cga.model import StairCore
+from cga.randomness import stream
+
+__all__ = ["STAIR_KINDS", "StairParams", "design_risers", "going_for", "place_core",
+           "core_for_storey"]
+
+STAIR_KINDS = ("U", "straight", "none")
+"""Values of make_floor's ``stair``: a U stair with a half landing, one straight flight,
+or no stair."""
+
+_GRID = 0.01  # m: core sizes and positions on the BSP's 1 cm grid
+_STEP = 0.5  # m: spacing of the candidate positions along an edge
+_DOOR_MARGIN = 0.1  # m: clear wall each side of a door (roomtyping.doors.DOOR_MARGIN)
+
+
+@dataclass(frozen=True)
+class StairParams:
+    """A stair's parameters as the grammar gives them (metres)."""
+
+    kind: Literal["straight", "U"] = "U"
+    width: float = 1.0
+    max_rise: float = 0.19
+    min_going: float = 0.25
+    well: float = 0.2
+
+    def check(self) -> None:
+        """Raise :class:`DerivationError` for parameters no stair can meet."""
+        if self.kind not in ("straight", "U"):
+            raise DerivationError(f"stair must be one of 'U', 'straight', 'none', got {self.kind!r}")
+        if not 0.5 <= self.width <= 5.0:
+            raise DerivationError(f"stair_width must be between 0.5 and 5 m, got {self.width:g}")
+        if not 0.1 <= self.max_rise <= 0.25:
+            raise DerivationError(f"max_rise must be between 0.1 and 0.25 m, got {self.max_rise:g}")
+        if not 0.15 <= self.min_going <= 0.5:
+            raise DerivationError(f"min_going must be between 0.15 and 0.5 m, got {self.min_going:g}")
+
+
+def design_risers(height: float, max_rise: float, kind: str) -> tuple[int, float]:
+    """``(risers, rise)`` climbing ``height`` with no riser above ``max_rise`` (an even
+    count for a U stair)."""
+    n = math.ceil(height / max_rise - 1e-9)
+    if kind == "U" and n % 2:
+        n += 1
+    return n, height / n
+
+
+def going_for(rise: float, min_going: float) -> float:
+    """Blondel's rule ``2 · rise + going = 0.63 m``, at least ``min_going``, rounded up
+    to the millimetre."""
+    return max(min_going, math.ceil((0.63 - 2 * rise) * 1000 - 1e-6) / 1000)
+
+
+def _landing_depth(params: StairParams, door_width: float, wall: float) -> float:
+    """Deep enough to step off the stair (its width) and for a door along its side."""
+    return max(params.width, door_width + 2 * _DOOR_MARGIN + wall)
+
+
+def _up(value: float) -> float:
+    return math.ceil(value / _GRID - 1e-6) * _GRID
+
+
+def place_core(footprint: Polygon, storey_height: float, storeys: int, params: StairParams, *,
+               wall: float, door_width: float, min_width: float,
+               rng: np.random.Generator, corridors: Sequence[Polygon] = ()) -> StairCore:
+    """Place a stair core against the footprint's boundary.
+
+    Parameters
+    ----------
+    footprint
+        The storey's footprint (counter-clockwise, rectilinear or convex).
+    storey_height
+        Floor-to-floor height the stair climbs (m).
+    storeys
+        How many storeys the core serves.
+    params
+        Kind, width, maximum rise, minimum going.
+    wall, door_width, min_width
+        Wall thickness, door width and the least room width of the storey (m).
+    rng
+        Chooses among the best places.
+    corridors
+        The storey's corridors and halls (DESIGN §11): the core keeps clear of them and,
+        where it can, its landing opens onto one.
+
+    Returns
+    -------
+    StairCore
+
+    Raises
+    ------
+    DerivationError
+        No edge of the footprint takes the core with rooms of ``min_width`` left around it.
+
+    Notes
+    -----
+    Candidates lie along every axis-aligned edge long enough for the core: flush with
+    either end or at least ``min_width`` from it, every 0.5 m, the landing at either end.
+    A candidate is kept when the core lies inside the footprint, the rest is one polygon
+    without parts narrower than ``min_width``, and the landing's long side faces the
+    inside (it takes the door). Of those, the ones whose landing touches a corridor
+    come first, then those whose landing is nearest the footprint's centre (short
+    walks); the pick among the best three is drawn from ``rng``. O(edges × positions)
+    shapely tests.
+    """
+    params.check()
+    risers, rise = design_risers(storey_height, params.max_rise, params.kind)
+    going = going_for(rise, params.min_going)
+    depth = _landing_depth(params, door_width, wall)
+    core = StairCore(polygon=Polygon(), origin=(0.0, 0.0), u=(1.0, 0.0), v=(0.0, 1.0),
+                     kind=params.kind, width=params.width, well=params.well,
+                     landing_depth=depth, risers=risers, rise=rise, going=going,
+                     storeys=storeys)
+    length = _up(core.interior_length + 2 * wall)
+    breadth = _up(core.interior_width + 2 * wall)
+    centre = footprint.centroid
+    ring = list(orient(footprint, sign=1.0).exterior.coords)[:-1]
+    options: list[tuple[bool, float, StairCore]] = []
+    for a, b in zip(ring, ring[1:] + ring[:1]):
+        edge = math.dist(a, b)
+        d = np.subtract(b, a) / edge if edge > 0 else np.zeros(2)
+        if edge < length - 1e-9 or min(abs(d[0]), abs(d[1])) > 1e-9:
+            continue
+        n = np.array([-d[1], d[0]])  # the inside lies to the left of a CCW edge
+        for s in _positions(edge, length, min_width):
+            corner = np.asarray(a) + d * s
+            rect = Polygon([corner, corner + d * length, corner + d * length + n * breadth,
+                            corner + n * breadth])
+            if not _fits(footprint, rect, min_width) or any(
+                    rect.intersection(c).area > 1e-9 for c in corridors):
+                continue
+            for flip in (False, True):
+                u = -d if flip else d
+                origin = corner + d * (length - wall if flip else wall) + n * wall
+                option = StairCore(polygon=orient(rect, sign=1.0),
+                                   origin=(float(origin[0]), float(origin[1])),
+                                   u=(float(u[0]), float(u[1])), v=(float(n[0]), float(n[1])),
+                                   kind=params.kind, width=params.width, well=params.well,
+                                   landing_depth=depth, risers=risers, rise=rise,
+                                   going=going, storeys=storeys)
+                side = Point(option.at(depth / 2, core.interior_width + 2 * wall))
+                if not footprint.contains(side):
+                    continue  # the landing's long side is an outer wall: no door there
+                landing = Point(option.at(depth / 2, core.interior_width / 2))
+                strip = _landing_strip(option, depth, wall)
+                onto = any(strip.intersection(c.boundary).length >= door_width for c in corridors)
+                options.append((not onto, landing.distance(centre), option))
+    if not options:
+        minx, minz, maxx, maxz = footprint.bounds
+        raise DerivationError(
+            f"no place for a {params.kind} stair core of {length:.2f} m x {breadth:.2f} m in a "
+            f"{maxx - minx:.4g} m x {maxz - minz:.4g} m footprint with rooms at least "
+            f"{min_width:g} m wide around it",
+            hint="give the building a larger lot, a narrower stair (stair_width), or stair = \"none\"")
+    options.sort(key=lambda o: o[:2])
+    return options[int(rng.integers(min(3, len(options))))][2]
+
+
+def _landing_strip(core: StairCore, depth: float, wall: float) -> Polygon:
+    """The landing end of the core out to its walls' centre lines."""
+    return core.rect(-wall, depth, -wall, core.interior_width + wall).buffer(1e-6)
+
+
+def _positions(edge: float, length: float, min_width: float) -> list[float]:
+    """Offsets of the core along an edge: flush with either end, or ``min_width`` clear."""
+    out = {0.0, round(edge - length, 6)}
+    s = min_width
+    while s + length + min_width <= edge + 1e-9:
+        out.add(round(math.floor(s / _GRID + 1e-6) * _GRID, 6))
+        s += _STEP
+    return sorted(out)
+
+
+def _fits(footprint: Polygon, rect: Polygon, min_width: float) -> bool:
+    """The core lies inside and leaves one polygon without parts narrower than ``min_width``."""
+    if not footprint.buffer(1e-7).covers(rect):
+        return False
+    rest = shapely.set_precision(footprint.difference(rect), 1e-6)
+    if not isinstance(rest, Polygon) or rest.interiors or rest.is_empty:
+        return False
+    r = min_width / 2 - 1e-3
+    opened = rest.buffer(-r, join_style="mitre").buffer(r, join_style="mitre")
+    return rest.area - opened.area < 1e-3
+
+
+def core_for_storey(cache: dict[str, Any], seed: int, footprint: Polygon, storey_height: float,
+                    storeys: int, params: StairParams, *, wall: float, door_width: float,
+                    min_width: float, corridors: Sequence[Polygon] = ()) -> StairCore:
+    """The stair core of the building this storey belongs to.
+
+    Storeys are derived one at a time; the first storey of a building to ask places the
+    core and registers it in the build's shared cache under the footprint (rounded to a
+    micrometre) and the storey height, so every storey of the stack gets the very same
+    rectangle even when their rules give different room counts. The place is drawn from
+    the stream ``(seed, "stair_core", footprint)``, which does not depend on which storey
+    asks first. ``corridors`` are those of the storey that places the core (usually the
+    ground floor): the core keeps clear of them and opens onto one when it can.
+    """
+    key = f"stair_core:{shapely.set_precision(footprint, 1e-6).wkt}:{storey_height:.6f}"
+    core = cache.get(key)
+    if core is None:
+        rng = stream(seed, ("stair_core", shapely.set_precision(footprint, 1e-6).wkt))
+        core = place_core(footprint, storey_height, storeys, params, wall=wall,
+                          door_width=door_width, min_width=min_width, rng=rng,
+                          corridors=corridors)
+        cache[key] = core
+    return core
