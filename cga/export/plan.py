@@ -5,6 +5,8 @@ What is drawn (docs/outputs.md), bottom to top:
 * rooms filled with a soft colour per type (:mod:`cga.export.palette`);
 * furniture footprints with outlines and small names (rugs dashed; detail items such
   as door leaves are left to the door symbols);
+* stairs: treads, cut line and the "up" walking line on the floor a stair leaves, the
+  stairwell opening on the floor it reaches (:mod:`cga.export.plan_stairs`);
 * walls as solid dark poured walls of their true thickness: the footprint minus the
   rooms' free floor, with the openings cut out;
 * windows as thin double lines in their wall gap; doors as gaps with the leaf drawn
@@ -41,6 +43,7 @@ from cga.scene import Scene, SceneNode
 from .drawing import (Arc, Area, Drawing, Point, Polyline, Style, Text, render_png, render_svg,
                       text_width)
 from .palette import hex_color, room_color
+from .plan_stairs import draw_stairs
 
 __all__ = ["MAX_PLAN_PX", "plan_drawing", "export_plans"]
 
@@ -106,7 +109,7 @@ def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
     Returns
     -------
     Drawing
-        Page in pixels; layers ``rooms``, ``furniture``, ``walls``, ``windows``,
+        Page in pixels; layers ``rooms``, ``furniture``, ``stairs``, ``walls``, ``windows``,
         ``doors``, ``labels``, ``furniture-labels``, ``annotation``. Every room gets
         exactly one ``room-label`` text.
     """
@@ -127,6 +130,7 @@ def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
                       title=title, background="#fcfbf8")
     _draw_rooms(drawing, paper, plan)
     _draw_furniture(drawing, paper, plan)
+    draw_stairs(drawing, plan, paper.point)
     _draw_walls(drawing, paper, plan)
     _draw_windows(drawing, paper, plan)
     _draw_doors(drawing, paper, plan)

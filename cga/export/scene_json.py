@@ -1,7 +1,8 @@
 """``<name>.scene.json``: everything a build decided, as plain data with a schema.
 
 The document lists floors, rooms, walls (with openings), doors, windows, furniture
-poses, room-graph edges, diagnostics, checks, the seed and the tool version, in the
+poses, room-graph edges (door edges per floor, stair edges between floors), stairs,
+diagnostics, checks, the seed and the tool version, in the
 world frame of docs/architecture.md ("Units and frames") (metres, y up, plan coordinates
 ``(x, z)``). Its JSON Schema (draft 2020-12) ships as package data,
 ``cga/schema/scene.schema.json``.
@@ -33,7 +34,7 @@ from shapely.geometry.polygon import orient
 import cga
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
-from cga.model import OUTSIDE, Door, FloorPlan, FurnitureItem, Room, Wall, Window
+from cga.model import OUTSIDE, Door, Flight, FloorPlan, FurnitureItem, Room, Stair, Wall, Window
 from cga.scene import Scene, SceneNode
 
 __all__ = [
@@ -90,6 +91,7 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
     node_paths = {node.path for node in nodes}
     leaves = {node.path: node for node in nodes if node.door is not None}
     floors = scene.floors
+    stairs = sorted({s.id: s for p in floors for s in p.stairs}.values(), key=lambda s: s.id)
     document = {
         "format": FORMAT,
         "format_version": FORMAT_VERSION,
@@ -109,7 +111,8 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "doors": [_door(p, d) for p in floors for d in p.doors],
         "windows": [_window(p, w) for p in floors for w in p.windows],
         "furniture": [_furniture(p, f, node_paths, leaves) for p in floors for f in p.furniture],
-        "room_graph": [e for p in floors for e in _graph_edges(p)],
+        "room_graph": [e for p in floors for e in _graph_edges(p)] + [_stair_edge(s) for s in stairs],
+        "stairs": [_stair(s, node_paths) for s in stairs],
         "nodes": [_node(n) for n in nodes],
         "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
                         for d in scene.all_diagnostics()],
@@ -146,6 +149,8 @@ def _floor(plan: FloorPlan) -> dict[str, Any]:
         "footprint": _polygon(plan.footprint),
         "area": float(plan.footprint.area),
         "settings": dataclasses.asdict(plan.settings),
+        "stairwell": _polygon(plan.stairwell) if plan.stairwell is not None else None,
+        "stair_core": plan.core_room,
     }
 
 
@@ -155,6 +160,7 @@ def _room(plan: FloorPlan, room: Room, node_paths: set[str]) -> dict[str, Any]:
         "floor": plan.index,
         "id": room.id,
         "type": room.type,
+        "circulation": room.circulation,
         "polygon": _polygon(room.polygon),
         "interior": _polygon(room.interior),
         "area": room.area,
@@ -263,6 +269,39 @@ def _graph_edges(plan: FloorPlan) -> Iterable[dict[str, Any]]:
                     "doors": doors, "door_states": [states[d] for d in doors],
                     "passable": any(states[d] == "open" for d in doors)})
     return out
+
+
+def _stair_edge(stair: Stair) -> dict[str, Any]:
+    return {"floor": stair.floors[0], "to_floor": stair.floors[1], "rooms": list(stair.rooms),
+            "outside": False, "doors": [], "door_states": [], "passable": True, "stair": stair.id}
+
+
+def _flight(flight: Flight) -> dict[str, Any]:
+    return {"start": list(flight.start), "direction": list(flight.direction),
+            "width": flight.width, "base_y": flight.base_y, "risers": flight.risers,
+            "rise": flight.rise, "going": flight.going, "polygon": _polygon(flight.polygon())}
+
+
+def _stair(stair: Stair, node_paths: set[str]) -> dict[str, Any]:
+    path = f"floor{stair.floors[0]}/stair{stair.id}"
+    return {
+        "id": stair.id,
+        "kind": stair.kind,
+        "floors": list(stair.floors),
+        "rooms": list(stair.rooms),
+        "polygon": _polygon(stair.polygon),
+        "landings": [_polygon(p) for p in stair.landings],
+        "landing_points": [list(p) for p in stair.landing_points],
+        "steps": stair.risers,
+        "treads": stair.treads,
+        "rise": stair.rise,
+        "going": stair.going,
+        "width": stair.width,
+        "bottom_y": stair.bottom_y,
+        "top_y": stair.top_y,
+        "flights": [_flight(f) for f in stair.flights],
+        "node": path if path in node_paths else None,
+    }
 
 
 def _node(node: SceneNode) -> dict[str, Any]:
