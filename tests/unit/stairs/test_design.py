@@ -1,0 +1,87 @@
+"""Stair sizing and core placement (DESIGN §12)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+from shapely.geometry import Polygon, box
+
+from cga.errors import DerivationError
+from cga.operations.stairs import StairParams, core_for_storey, design_risers, place_core
+from cga.operations.stairs.design import going_for
+
+L_SHAPE = Polygon([(0, 0), (18, 0), (18, 8), (11, 8), (11, 14), (0, 14)])
+
+
+@pytest.mark.parametrize("height", [2.6, 2.8, 3.0, 3.3, 3.5, 4.0])
+@pytest.mark.parametrize("kind", ["U", "straight"])
+def test_risers_never_exceed_the_maximum_and_add_up_to_the_storey(height, kind):
+    n, rise = design_risers(height, 0.19, kind)
+    assert rise <= 0.19 + 1e-12 and n * rise == pytest.approx(height)
+    assert n == math.ceil(height / 0.19 - 1e-9) + (1 if kind == "U" and math.ceil(height / 0.19 - 1e-9) % 2 else 0)
+    if kind == "U":
+        assert n % 2 == 0  # two equal flights
+
+
+def test_going_follows_blondel_but_not_below_the_minimum():
+    assert going_for(0.1875, 0.25) == pytest.approx(0.255)
+    assert going_for(0.19, 0.28) == 0.28
+    assert 2 * 0.16 + going_for(0.16, 0.25) == pytest.approx(0.63, abs=1e-3)
+
+
+@pytest.mark.parametrize("footprint", [box(0, 0, 14, 10), box(0, 0, 20, 12), L_SHAPE],
+                         ids=["house", "office", "L"])
+@pytest.mark.parametrize("kind", ["U", "straight"])
+def test_the_core_fits_against_the_boundary_and_leaves_one_simple_rest(footprint, kind):
+    for seed in range(5):
+        core = place_core(footprint, 3.0, 2, StairParams(kind=kind), wall=0.2, door_width=0.9,
+                          min_width=2.4, rng=np.random.default_rng(seed))
+        assert footprint.covers(core.polygon)
+        assert core.polygon.exterior.intersection(footprint.exterior).length > 0  # on the boundary
+        rest = footprint.difference(core.polygon)
+        assert isinstance(rest, Polygon) and not rest.interiors
+        # the flights and landings fit inside the core's walls
+        inside = core.rect(0, core.interior_length, 0, core.interior_width)
+        assert core.polygon.buffer(-0.2 + 1e-9, join_style="mitre").covers(inside)
+        assert core.width >= 0.9 and core.rise <= 0.19 and core.going >= 0.25
+
+
+def test_the_landing_faces_the_inside_of_the_building():
+    footprint = box(0, 0, 14, 10)
+    for seed in range(8):
+        core = place_core(footprint, 3.0, 2, StairParams(), wall=0.2, door_width=0.9,
+                          min_width=2.4, rng=np.random.default_rng(seed))
+        # just beyond the landing's long side lies the floor, not the outside
+        probe = shapely.Point(core.at(core.landing_depth / 2, core.interior_width + 0.5))
+        assert footprint.contains(probe)
+
+
+def test_a_footprint_too_small_for_a_core_is_a_clear_error():
+    with pytest.raises(DerivationError, match="no place for a U stair core"):
+        place_core(box(0, 0, 5, 4), 3.0, 2, StairParams(), wall=0.2, door_width=0.9,
+                   min_width=2.4, rng=np.random.default_rng(0))
+
+
+@pytest.mark.parametrize("params, message", [
+    (StairParams(width=0.3), "stair_width"),
+    (StairParams(max_rise=0.4), "max_rise"),
+    (StairParams(min_going=0.05), "min_going"),
+])
+def test_impossible_parameters_are_refused(params, message):
+    with pytest.raises(DerivationError, match=message):
+        params.check()
+
+
+def test_every_storey_of_a_building_gets_the_same_core():
+    cache: dict = {}
+    first = core_for_storey(cache, 7, L_SHAPE, 3.0, 3, StairParams(), wall=0.2, door_width=0.9,
+                            min_width=2.4)
+    again = core_for_storey(cache, 7, L_SHAPE, 3.0, 3, StairParams(width=1.5), wall=0.2,
+                            door_width=0.9, min_width=2.4)
+    assert again is first
+    fresh = core_for_storey({}, 7, L_SHAPE, 3.0, 3, StairParams(), wall=0.2, door_width=0.9,
+                            min_width=2.4)
+    assert fresh == first  # the place depends on the seed and footprint, not on who asks first
