@@ -35,15 +35,16 @@ def stack_plans(plans: Sequence[FloorPlan]) -> list[FloorPlan]:
     from cga.operations.stairs import stair_between
 
     order = sorted(range(len(plans)), key=lambda i: plans[i].index)
+    at_index: dict[int, list[int]] = {}
+    for i in order:
+        at_index.setdefault(plans[i].index, []).append(i)
     stairs: dict[int, list[Stair]] = {i: [] for i in range(len(plans))}
     tops = {i: True for i in range(len(plans))}
     count = 0
     for i in order:
         lower = plans[i]
-        for j in order:
+        for j in at_index.get(lower.index + 1, []):
             upper = plans[j]
-            if upper.index != lower.index + 1:
-                continue
             if upper.footprint.intersection(lower.footprint).area > 1e-9:
                 tops[i] = False
             if lower.core is not None and lower.core == upper.core:

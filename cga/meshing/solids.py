@@ -13,7 +13,9 @@ solids are built last, from whatever openings the walls carry then (docs/archite
   watertight solid;
 * the floor slab fills the footprint below the walking surface, less the stairwell of a
   stair arriving from below (DESIGN §12); the top storey (``is_top``) also gets a roof
-  slab on top of its walls (lower storeys are covered by the next floor's slab).
+  slab, in the top ``slab_thickness`` of the storey, where the next floor's slab would
+  be, and its walls stop under it (lower storeys are covered by the next floor's slab),
+  so the building stays within the mass it was cut from.
 """
 
 from __future__ import annotations
@@ -120,6 +122,9 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
     """
     y0 = plan.floor_y
     top = plan.elevation + plan.height
+    slab = plan.settings.slab_thickness
+    if plan.is_top:  # the roof slab takes the top of the storey, as the next floor's would
+        top -= slab
     footprints = wall_footprints(plan)
     labels = {r.id: r.label for r in plan.rooms}
     nodes = []
@@ -137,7 +142,6 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
         nodes.append(SceneNode(path, "wall", mesh, extras={
             "wall_id": wall.id, "outer": wall.outer, "rooms": rooms,
             "openings": len(wall.openings)}))
-    slab = plan.settings.slab_thickness
     well = plan.stairwell
     floor_area = plan.footprint if well is None else plan.footprint.difference(well)
     nodes.append(SceneNode(f"floor{plan.index}/slab", "slab",

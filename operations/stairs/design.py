@@ -39,6 +39,7 @@ or no stair."""
 
 _GRID = 0.01  # m: core sizes and positions on the BSP's 1 cm grid
 _STEP = 0.5  # m: spacing of the candidate positions along an edge
+_MAX_POSITIONS = 24  # candidate positions per edge at most
 _DOOR_MARGIN = 0.1  # m: clear wall each side of a door (roomtyping.doors.DOOR_MARGIN)
 
 
@@ -190,12 +191,16 @@ def _landing_strip(core: StairCore, depth: float, wall: float) -> Polygon:
 
 
 def _positions(edge: float, length: float, min_width: float) -> list[float]:
-    """Offsets of the core along an edge: flush with either end, or ``min_width`` clear."""
+    """Offsets of the core along an edge: flush with either end, or ``min_width`` clear
+    of both, every :data:`_STEP` (at most :data:`_MAX_POSITIONS` of them, spread evenly,
+    so a kilometre-long edge costs no more than a house's)."""
     out = {0.0, round(edge - length, 6)}
-    s = min_width
-    while s + length + min_width <= edge + 1e-9:
-        out.add(round(math.floor(s / _GRID + 1e-6) * _GRID, 6))
-        s += _STEP
+    free = edge - length - 2 * min_width
+    if free >= -1e-9:
+        count = min(_MAX_POSITIONS, int(free / _STEP + 1e-9) + 1)
+        step = free / (count - 1) if count > 1 else 0.0
+        for k in range(count):
+            out.add(round(math.floor((min_width + k * step) / _GRID + 1e-6) * _GRID, 6))
     return sorted(out)
 
 

@@ -50,9 +50,12 @@ def test_typed_rooms_name_the_path_and_top_floor_gets_a_roof():
     assert "floor1/room2_Kitchen/wall9" in paths and "floor1/room0/wall0" in paths
     roof = next(n for n in nodes if n.kind == "roof")
     assert roof.path == "floor1/roof"
-    assert roof.mesh.bounds.ravel() == pytest.approx([0, 6.0, 0, 14, 6.2, 10])
+    # the roof takes the top of the storey (where a next floor's slab would be): the
+    # building stays within the mass, and the walls stop under the roof
+    assert roof.mesh.bounds.ravel() == pytest.approx([0, 5.8, 0, 14, 6.0, 10])
     slab = next(n for n in nodes if n.kind == "slab")
     assert slab.mesh.bounds.ravel() == pytest.approx([0, 3.0, 0, 14, 3.2, 10])
+    assert max(n.mesh.bounds[1][1] for n in walls(nodes)) == pytest.approx(5.8)
 
 
 def test_walls_are_watertight_fill_the_wall_region_and_do_not_overlap():
