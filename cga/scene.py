@@ -65,7 +65,8 @@ class SceneNode:
 
     ``path`` is the semantic node name, e.g. ``floor1/room3_Kitchen/wall2`` or
     ``floor0/room1_Livingroom/furniture/sofa``; ``kind`` is a :data:`NodeKind`. ``parts``
-    are the convex pieces of a furniture item (physics uses them as a compound body); ``static`` bodies do not move.
+    are the convex pieces of a furniture item (physics uses them as a compound body);
+    ``static`` bodies do not move.
     ``item`` describes a furniture node (None for every other kind); ``extras`` are the
     labels of the other kinds (wall id, floor, shape path, ...), written to the glTF as
     they are. ``door`` is set on a door leaf: its hinge, angle and collision box

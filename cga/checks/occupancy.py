@@ -339,18 +339,16 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
 
 def stair_obstacles(plan: FloorPlan) -> list[Obstacle]:
     """The stairs on this floor as obstacles, all but their floor landings (DESIGN §12):
-    the flights and half landing of the stair leaving it (``floor{i}/stair{k}/flights``,
-    kind ``"stair"``) and the stairwell of the stair arriving (``floor{i}/stairwell{k}``,
-    kind ``"stairwell"``). A wheeled robot cannot drive up steps or over the hole; it
+    the flights and half landing of the stair leaving it (``floor{i}/stair{k}/flights``)
+    and the stairwell of the stair arriving (``floor{i}/stairwell{k}``), both of kind
+    ``"stair"``. A wheeled robot cannot drive up steps or over the hole; it
     changes floors at the landings (:mod:`cga.checks.navigability`)."""
     out = []
     up, down = plan.stair_up, plan.stair_down
     if up is not None:
-        out.append(Obstacle(f"floor{plan.index}/stair{up.id}/flights", "stair", up.polygon,
-                            {"floor": plan.index, "stair": up.id}))
+        out.append(Obstacle(f"floor{plan.index}/stair{up.id}/flights", "stair", up.polygon))
     if down is not None:
-        out.append(Obstacle(f"floor{plan.index}/stairwell{down.id}", "stairwell", down.polygon,
-                            {"floor": plan.index, "stair": down.id}))
+        out.append(Obstacle(f"floor{plan.index}/stairwell{down.id}", "stair", down.polygon))
     return out
 
 

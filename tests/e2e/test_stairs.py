@@ -20,8 +20,9 @@ import trimesh
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.ops import unary_union
 
+from items import item_info
+
 from cga.checks.navigability import check_navigability
-from cga.meshing import scene_nodes
 from cga.pipeline import build
 from cga.scene import SceneNode
 
@@ -202,7 +203,7 @@ def test_a_dropped_body_comes_to_rest_on_a_step(built):
 
 def test_a_blocked_top_landing_cuts_off_the_upper_floor_and_says_where(tmp_path):
     scene = build(ROOT / "demos" / "house.grammar", seed=3, formats=(), physics=False, quiet=True)
-    nodes = scene_nodes(scene)
+    nodes = scene.nodes
     assert check_navigability(scene, nodes).passed
     upper = scene.floors[1]
     stair = upper.stair_down
@@ -210,8 +211,8 @@ def test_a_blocked_top_landing_cuts_off_the_upper_floor_and_says_where(tmp_path)
     x0, z0, x1, z1 = landing.bounds
     crate = trimesh.creation.box(extents=[x1 - x0, 1.0, z1 - z0])
     crate.apply_translation([(x0 + x1) / 2, upper.floor_y + 0.5, (z0 + z1) / 2])
-    blocker = SceneNode("floor1/crate", "furniture", crate, extras={"room": stair.rooms[1]},
-                        static=False)
+    blocker = SceneNode("floor1/crate", "furniture", crate, static=False, parts=(crate,),
+                        item=item_info("crate", room=stair.rooms[1]))
     report = check_navigability(scene, [*nodes, blocker])
     ground, first = report.floors
     assert ground.passed and ground.stair_up_reached

@@ -11,7 +11,7 @@ from cga.errors import DerivationError
 from cga.model import FloorSettings
 from cga.operations.floorplan.rectangles import plan_from_rectangles
 from cga.operations.stairs import StairParams, place_core, stair_between
-from cga.operations.stairs.solids import rail_footprint, stair_mesh, stair_nodes
+from cga.meshing.stairs import rail_footprint, stair_mesh, stair_nodes
 
 
 def _floors(kind: str, storey: float = 3.0):
