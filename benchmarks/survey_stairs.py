@@ -18,7 +18,7 @@ move stairs), so 300 seeds take a minute or two.
 
 Usage::
 
-    python benchmarks/survey_stairs.py --seeds 300 --full 20
+    python benchmarks/survey_stairs.py --seeds 300 --full 20 [--demo house ...]
 """
 
 from __future__ import annotations
@@ -102,10 +102,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=300)
     parser.add_argument("--full", type=int, default=0, help="seeds also built with checks")
+    parser.add_argument("--demo", action="append", choices=sorted(DEMOS),
+                        help="survey only this demo (repeatable; default: all)")
     args = parser.parse_args()
     registry = OperationRegistry()
     registry.register(_NoFurniture())
     for name, limits in DEMOS.items():
+        if args.demo and name not in args.demo:
+            continue
         path = ROOT / "demos" / f"{name}.grammar"
         grammar = parse(read_grammar(path), str(path))
         started, bad, storeys = time.perf_counter(), {}, set()

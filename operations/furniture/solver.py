@@ -203,7 +203,8 @@ def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
                  rng: np.random.Generator, *, steering_iterations: int = 10,
                  attempts: int = 20, passage_width: float = PASSAGE_WIDTH
                  ) -> tuple[tuple[FurnitureItem, ...], tuple[Diagnostic, ...]]:
-    """Furnish every typed room of ``plan`` and add the door and window details.
+    """Furnish every typed room of ``plan`` but its stair core, and add the door and
+    window details.
 
     Parameters
     ----------
@@ -225,7 +226,9 @@ def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
         Detail items first, then each room's furniture; one warning per item left out,
         naming the item, the room and the reason.
     """
-    rooms = sorted((r for r in plan.rooms if r.type is not None), key=lambda r: r.id)
+    # the stair core holds flights and landings, never furniture (DESIGN §12)
+    rooms = sorted((r for r in plan.rooms if r.type is not None and r.id != plan.core_room),
+                   key=lambda r: r.id)
     streams = rng.spawn(len(rooms)) if rooms else []
     furniture: list[FurnitureItem] = list(detail_items(plan, rules))
     diagnostics: list[Diagnostic] = []

@@ -223,3 +223,37 @@ def test_a_blocked_top_landing_cuts_off_the_upper_floor_and_says_where(tmp_path)
     assert "top landing" in reason and f"({px:.2f}, {pz:.2f})" in reason
     assert "floor1/crate" in reason and f"stair {stair.id}" in reason
     assert "floor 1" in report.summary()
+
+
+STRAIGHT = """
+Lot: rectangle(16, 11)
+Rules:
+Lot --> extrude({height}) Body
+Body --> repeated_split("Y", 3){{Ground, Upper}}
+Ground --> make_floor(5, 0.2, 2>1.2>1.2, 0.9, 2.1, stair = "straight") Floor
+Upper --> make_floor(4, 0.2, 2>1.2>1.2, 0.9, 2.1, stair = "straight") Floor
+Floor --> case floor == 0 : type_rooms("house_types.csv") Typed
+        | else : type_rooms("house_upper_types.csv") Typed
+"""
+
+
+def test_a_straight_stair_joins_two_storeys_and_the_robot_climbs_it(tmp_path):
+    path = tmp_path / "straight.grammar"
+    path.write_text(STRAIGHT.format(height=6), encoding="utf-8")
+    for seed in range(3):
+        scene = build(path, seed=seed, formats=("json",), out_dir=tmp_path / str(seed), quiet=True)
+        data = json.loads((tmp_path / str(seed) / "straight.scene.json").read_text(encoding="utf-8"))
+        [stair] = data["stairs"]
+        assert stair["kind"] == "straight" and len(stair["flights"]) == 1
+        bottom, top = (_polygon(p) for p in stair["landings"])
+        assert bottom.distance(top) > 1.0  # the landings are at the two ends of the flight
+        assert scene.checks["navigability"]["passed"], scene.checks["navigability"]["summary"]
+
+
+def test_a_straight_stair_through_three_storeys_is_refused(tmp_path):
+    from cga.errors import DerivationError
+
+    path = tmp_path / "straight.grammar"
+    path.write_text(STRAIGHT.format(height=9), encoding="utf-8")
+    with pytest.raises(DerivationError, match='straight stair joins two storeys'):
+        build(path, formats=(), physics=False, quiet=True)
