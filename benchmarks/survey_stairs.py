@@ -35,7 +35,7 @@ from cga.building import stack_storeys
 from cga.evaluator import Evaluator
 from cga.operations import OperationRegistry
 from cga.operations.base import Child, Operation, OperationContext, Param
-from cga.operations.floorplan.solids import floor_nodes
+from cga.meshing.solids import floor_nodes
 from cga.parser import parse, read_grammar
 from cga.pipeline import build
 from cga.shape import Shape
