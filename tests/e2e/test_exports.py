@@ -123,6 +123,8 @@ def test_ros_maps_match_the_scene(built):
         ros_map = RosMap(out / f"{grammar.stem}.floor{floor['index']}.yaml")
         counts = check_map_against_scene(ros_map, doc, floor["index"])
         assert counts["wall"] > 0 and counts["free"] > 0
+        if any(floor["index"] in s["floors"] for s in doc["stairs"]):
+            assert counts["stair"] > 0  # the stair is an obstacle on both of its floors
 
 
 def test_same_seed_same_files(tmp_path):

@@ -62,14 +62,31 @@ def _wall_samples(wall: dict, footprint: Polygon):
             yield start + u * s + offset
 
 
+def _grid(area: Polygon, step: float = 0.25):
+    """Points every ``step`` metres inside ``area``."""
+    if area.is_empty:
+        return
+    min_x, min_z, max_x, max_z = area.bounds
+    for x in np.arange(min_x, max_x, step):
+        for z in np.arange(min_z, max_z, step):
+            if area.contains(Point(x, z)):
+                yield x, z
+
+
 def check_map_against_scene(ros_map: RosMap, doc: dict, floor: int, *,
                             band: tuple[float, float] = (0.05, 1.2)) -> dict[str, int]:
-    """Assert walls and solid furniture are occupied, open doors' centres and open floor
-    free, closed doors shut, the outside unknown. Returns how many points of each kind
-    were checked."""
+    """Assert walls, solid furniture and stairs (flights, half landings, stairwells) are
+    occupied, open doors' centres, open floor and stair landings free, closed doors shut,
+    the outside unknown. Returns how many points of each kind were checked."""
     level = next(f for f in doc["floors"] if f["index"] == floor)
     footprint = Polygon(level["footprint"]["exterior"])
-    counts = {"wall": 0, "door": 0, "furniture": 0, "free": 0, "outside": 0}
+    counts = {"wall": 0, "door": 0, "furniture": 0, "free": 0, "outside": 0, "stair": 0}
+    stairs = [s for s in doc.get("stairs", []) if floor in s["floors"]]
+    wells = [Polygon(s["polygon"]["exterior"]) for s in stairs]
+    for well in wells:
+        for x, z in _grid(well.buffer(-0.1)):
+            assert ros_map.at_world(x, z) == OCCUPIED, ("stair", floor, x, z)
+            counts["stair"] += 1
     for wall in (w for w in doc["walls"] if w["floor"] == floor):
         for x, z in _wall_samples(wall, footprint):
             assert ros_map.at_world(x, z) == OCCUPIED, ("wall", floor, wall["id"], x, z)
@@ -102,6 +119,7 @@ def check_map_against_scene(ros_map: RosMap, doc: dict, floor: int, *,
         counts["furniture"] += 1
     boxes = [Polygon.from_bounds(f["bbox"]["min"][0], f["bbox"]["min"][2], f["bbox"]["max"][0],
                                  f["bbox"]["max"][2]).buffer(0.1) for f in furniture]
+    boxes += [well.buffer(0.1) for well in wells]  # stairs are obstacles, checked above
     for room in (r for r in doc["rooms"] if r["floor"] == floor):
         interior = Polygon(room["interior"]["exterior"]).buffer(-0.1)
         if interior.is_empty:
