@@ -111,18 +111,17 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     ids = tuple(room.id for room in free)
     wants_front_door = table.outside_rule is not None and plan.index == 0
     landing = _landing_neighbours(plan, sites)
-    typing = None
-    for entrances in _entrance_choices(ids, sites, wants_front_door, landing):
+    choices = _entrance_choices(ids, sites, wants_front_door, landing)
+    for attempt, entrances in enumerate(choices, start=1):
         rooms = RoomSet(areas=tuple(room.area for room in free), adjacency=sites.adjacency(ids),
                         entrances=entrances, ids=ids)
         try:
             typing = assign_types(rooms, table, rng, area_scale=units ** 2)
             break
         except NoSolutionError:
-            if entrances is None or (wants_front_door and landing is None):
+            if attempt == len(choices):
                 raise
-            continue  # next: the same rules without asking for the stair landing
-    assert typing is not None
+            # next: the same rules without asking for the stair landing
     notes = [Diagnostic(n.level, _STAGE, n.message, floor=plan.index, room=n.room)
              for n in typing.notes]
     types = {**dict(zip(ids, typing.types)), **fixed}
