@@ -255,10 +255,12 @@ def _open_point(region: BaseGeometry) -> tuple[float, float]:
 
 def _draw_room_labels(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
     """Type and area of every room, placed where the label box fits on free floor
-    (clear of furniture and door swings if possible), shrinking the font if needed."""
+    (clear of furniture, door swings and stairs if possible), shrinking the font if
+    needed."""
     swings = [ShapelyPoint(*door.position).buffer(door.width + 0.05) for door in plan.doors]
+    stairs = [stair.polygon.buffer(0.05) for stair in plan.stairs]  # the core's label: landing
     obstacles = unary_union([f.footprint().buffer(0.05) for f in plan.furniture
-                             if not f.is_detail] + swings)
+                             if not f.is_detail] + swings + stairs)
     for room in plan.rooms:
         interior = room.interior if not room.interior.is_empty else room.polygon
         name, area = _room_name(room), f"{room.area:.1f} m²"

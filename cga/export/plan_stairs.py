@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
-import numpy as np
 from shapely.geometry import Polygon
 
 from cga.model import Flight, FloorPlan, Stair
@@ -44,7 +43,7 @@ def draw_stairs(drawing: Drawing, plan: FloorPlan, to_paper: ToPaper) -> None:
     """Draw the stairwell arriving on ``plan`` and the stair leaving it (layer ``stairs``)."""
     down = plan.stair_down
     if down is not None:
-        _draw_opening(drawing, down.polygon, to_paper)
+        _draw_opening(drawing, down, to_paper)
     up = plan.stair_up
     if up is not None:
         _draw_stair(drawing, up, plan.floor_y, to_paper)
@@ -54,13 +53,15 @@ def _ring(polygon: Polygon, to_paper: ToPaper) -> tuple[Point, ...]:
     return tuple(to_paper(x, z) for x, z in polygon.exterior.coords[:-1])
 
 
-def _draw_opening(drawing: Drawing, well: Polygon, to_paper: ToPaper) -> None:
-    ring = _ring(well, to_paper)
+def _draw_opening(drawing: Drawing, stair: Stair, to_paper: ToPaper) -> None:
+    ring = _ring(stair.polygon, to_paper)
     drawing.add("stairs", Polyline(ring, _WELL, closed=True, css_class="stairwell"))
     drawing.add("stairs", Polyline((ring[0], ring[2]), _WELL, css_class="stairwell"))
     drawing.add("stairs", Polyline((ring[1], ring[3]), _WELL, css_class="stairwell"))
-    cx, cy = np.mean(ring, axis=0)
-    drawing.add("stairs", Text((float(cx), float(cy) + 4), "opening", 10, "#5d5d5d",
+    # the label on the half landing, where no flight of the stair above is drawn
+    where = stair.half_landing if stair.half_landing is not None else stair.polygon
+    cx, cy = to_paper(*where.centroid.coords[0])
+    drawing.add("stairs", Text((cx, cy + 4), "opening", 10, "#5d5d5d",
                                css_class="stairwell-label"))
 
 
