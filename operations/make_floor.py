@@ -11,7 +11,7 @@ Stairs (DESIGN §12): a storey of a stack of several (``repeated_split("y", ...)
 the ``floors`` attribute) first reserves the building's stair core, one rectangle in the
 same place on every storey (:func:`cga.operations.stairs.core_for_storey`), kept clear
 of the storey's corridors and next to them when it can be. The core is the first fixed
-face of the partition (never cut, circulation), typed ``Stair``; the partition is
+face of the partition (never cut), a circulation room typed ``Stair``; the partition is
 redrawn when its landing has no wall for a door. ``stair="none"`` builds storeys
 without one.
 """
@@ -140,13 +140,15 @@ class MakeFloor(Operation):
                                   hint=_footprint_hint(footprint)) from None
         core = _core(shape, args, ctx, footprint, mass.height, settings,
                      [Polygon(f.polygon) for f in fixed])
+        rooms_fixed = sum(not f.circulation for f in fixed)
         if core is not None:
             fixed = [_core_face(core, fixed), *fixed]
-        # Rooms besides the circulation: split + 1; fixed rooms and free pieces count.
+        # Rooms besides the circulation and the core: split + 1; fixed rooms and free
+        # pieces count.
         cuts = split
         if fixed:
             pieces = tile_with_fixed_faces(ring, [f.polygon for f in fixed])[1]
-            cuts = max(0, split + 1 - pieces - sum(not f.circulation for f in fixed))
+            cuts = max(0, split + 1 - pieces - rooms_fixed)
         door_reach = settings.door_width + 2 * (DOOR_MARGIN + settings.wall_thickness)
         for _ in range(_CORE_ATTEMPTS):
             try:
@@ -207,7 +209,10 @@ def _core(shape: Shape, args: dict[str, Any], ctx: OperationContext, footprint: 
 
 
 def _core_face(core: StairCore, fixed: list[FixedFace]) -> FixedFace:
-    """The core as the partition's first fixed face (circulation, never cut).
+    """The core as the partition's first fixed face, never cut. It is not marked as
+    circulation for the partition, which would keep every room in touch with it: rooms
+    reach the stair through the halls and rooms next to its landing; the core's room is
+    flagged as circulation afterwards (:func:`_with_core`).
 
     Raises
     ------
@@ -221,7 +226,7 @@ def _core_face(core: StairCore, fixed: list[FixedFace]) -> FixedFace:
                 f"{face.kind}: every storey of a stack must leave the core's place free",
                 hint="give the storeys the same corridor option, or stair = \"none\"")
     ring = list(orient(core.polygon, sign=1.0).exterior.coords)[:-1]
-    return FixedFace(tuple((float(x), float(z)) for x, z in ring), circulation=True, kind="core")
+    return FixedFace(tuple((float(x), float(z)) for x, z in ring), circulation=False, kind="core")
 
 
 def _bounds(polygon: Polygon) -> str:

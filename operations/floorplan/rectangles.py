@@ -25,7 +25,7 @@ from .assemble import plan_from_dcel
 from .dcel import DCEL, EPS
 from .errors import PartitionError
 
-__all__ = ["plan_from_rectangles", "subdivided_ring"]
+__all__ = ["plan_from_rectangles"]
 
 Rectangle = tuple[float, float, float, float]
 
@@ -69,7 +69,7 @@ def plan_from_rectangles(rectangles: Sequence[Rectangle], *, settings: FloorSett
     _check_rectangles(rects, settings.wall_thickness)
     corners = sorted({corner for x0, z0, x1, z1 in rects
                       for corner in ((x0, z0), (x1, z0), (x1, z1), (x0, z1))})
-    rings = [subdivided_ring(r, corners) for r in rects]
+    rings = [_subdivided_ring(r, corners) for r in rects]
     try:
         dcel = DCEL.from_polygons(rings)
         return plan_from_dcel(dcel, settings=settings, index=index, elevation=elevation, height=height)
@@ -94,7 +94,7 @@ def _check_rectangles(rects: list[Rectangle], thickness: float) -> None:
         raise UsageError("the rectangles leave a hole inside the footprint (courtyards are not supported)")
 
 
-def subdivided_ring(rect: Rectangle, corners: list[tuple[float, float]]) -> list[tuple[float, float]]:
+def _subdivided_ring(rect: Rectangle, corners: list[tuple[float, float]]) -> list[tuple[float, float]]:
     """The rectangle's counter-clockwise ring with every other corner lying on its sides."""
     x0, z0, x1, z1 = rect
     sides = [((x0, z0), (x1, z0)), ((x1, z0), (x1, z1)), ((x1, z1), (x0, z1)), ((x0, z1), (x0, z0))]
