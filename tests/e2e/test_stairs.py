@@ -247,7 +247,7 @@ def test_a_straight_stair_joins_two_storeys_and_the_robot_climbs_it(tmp_path):
         assert stair["kind"] == "straight" and len(stair["flights"]) == 1
         bottom, top = (_polygon(p) for p in stair["landings"])
         assert bottom.distance(top) > 1.0  # the landings are at the two ends of the flight
-        assert scene.checks["navigability"]["passed"], scene.checks["navigability"]["summary"]
+        assert data["checks"]["navigability"]["passed"], data["checks"]["navigability"]["summary"]
 
 
 def test_a_straight_stair_through_three_storeys_is_refused(tmp_path):
