@@ -150,7 +150,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             wall, interval = sites.inner[pair][0]
             centre = door_centre(interval, width, rng, door_position)
             kind: Literal["rule", "reachability", "stair"] = (
-                "stair" if pair == stair_pair else reason)  # type: ignore[assignment]
+                "stair" if pair == stair_pair else reason)
             doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, kind))
             if reason == "reachability":
                 notes.append(_reachability_note(typed, pair, table))

@@ -67,7 +67,7 @@ _OPEN = 100.0
 """Clearance (m) standing for "unbounded" (open ground, a grid without obstacles)."""
 
 
-StartKind = Literal["front_door", "entry_room", "largest_room"]
+StartKind = Literal["front_door", "stair", "entry_room", "largest_room"]
 """Where the robot starts on a floor (see :class:`FloorReach`)."""
 
 @dataclass(frozen=True)

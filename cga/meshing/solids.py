@@ -147,7 +147,7 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
     nodes.append(SceneNode(f"floor{plan.index}/slab", "slab",
                            _trimesh(*_prism(floor_area, plan.elevation, y0)),
                            extras={"floor": plan.index,
-                                   "stairwell": plan.stair_down.id if well is not None else None}))
+                                   "stairwell": below.id if (below := plan.stair_down) else None}))
     if plan.is_top:
         nodes.append(SceneNode(f"floor{plan.index}/roof", "roof",
                                _trimesh(*_prism(plan.footprint, top, top + slab)),

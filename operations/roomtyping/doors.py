@@ -189,7 +189,7 @@ def door_swing(door: Door, plan: FloorPlan) -> Polygon:
 
 
 def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
-              plan: FloorPlan, *, reason: Literal["rule", "reachability", "front"]) -> Door:
+              plan: FloorPlan, *, reason: Literal["rule", "reachability", "front", "stair"]) -> Door:
     """A door record for an opening centred ``centre`` metres along ``wall``.
 
     ``rooms`` are the two rooms it joins (the second is :data:`~cga.model.OUTSIDE` for
