@@ -187,6 +187,11 @@ class Room:
     """True for space whose job is to connect (hall, corridor, landing, stair core:
     docs/room_typing.md): drawn as circulation, never furnished as a private room, and where a
     stair core may stand."""
+    private: bool = False
+    """True when the room's rule forbids passing through it (``passThrough`` false:
+    bedrooms, bathrooms), set by ``type_rooms``."""
+    area_range: tuple[float, float | None] | None = None
+    """The area (m²) the room's rule asks for: ``(Size, maxSize)``, None without a rule."""
 
     @property
     def area(self) -> float:
@@ -336,6 +341,9 @@ class FloorPlan:
     diagnostics: tuple[Diagnostic, ...] = ()
     is_top: bool = False
     entry: int | None = None
+    layout: Any = None
+    """How ``make_floor`` drew this floor (``cga.operations.floorplan.layout.LayoutRecipe``),
+    so a typing that finds none can ask for a re-draw; None for hand-made floors."""
 
     @property
     def floor_y(self) -> float:

@@ -23,6 +23,8 @@ from cga.shape import Mass, Shape
 from cga.operation import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
 from .floorplan.bsp import partition
+from .floorplan.layout import LayoutRecipe
+from .floorplan.treemap import thesis_partition
 from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,
                                     circulation_faces)
 from .floorplan.errors import PartitionError
@@ -51,7 +53,8 @@ class MakeFloor(Operation):
         Param("min_room_area", "area", default=6.0, keyword_only=True,
               doc="no room smaller than this (m²)"),
         Param("cut_range", "range", default=(0.35, 0.65), keyword_only=True,
-              doc="cut position drawn from this fraction of a room's extent"),
+              doc="cut position drawn from this fraction of a room's extent; (0.5, 0.5) "
+                  "is the thesis' partition: mid cuts, alternating axes (Algorithm 8)"),
         Param("same_layout", "bool", default=False, keyword_only=True,
               doc="every floor made by this rule gets the same layout"),
         Param("window_sill", "length", default=0.9, keyword_only=True,
@@ -123,9 +126,16 @@ class MakeFloor(Operation):
             pieces = tile_with_fixed_faces(ring, [f.polygon for f in fixed])[1]
             cuts = max(0, split + 1 - pieces - sum(not f.circulation for f in fixed))
         door_reach = settings.door_width + 2 * (DOOR_MARGIN + settings.wall_thickness)
+        thesis = (lo, hi) == (0.5, 0.5)
+        if thesis and fixed:
+            raise DerivationError("the thesis' partition (cut_range = (0.5, 0.5)) has no "
+                                  "corridors; use another cut_range with corridor")
         try:
-            result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
-                               cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
+            if thesis:
+                result = thesis_partition(ring, split)
+            else:
+                result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
+                                   cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
         except PartitionError as error:
             raise DerivationError(f"make_floor cannot cut this footprint into rooms: {error}",
                                   hint=_footprint_hint(footprint)) from None
@@ -139,6 +149,11 @@ class MakeFloor(Operation):
                                   circulation=result.circulation)
         except PartitionError as error:
             raise DerivationError(f"the floor is too narrow for its walls: {error}") from None
+        if not thesis:  # the thesis' partition is the same every time: nothing to re-draw
+            plan = plan.with_changes(layout=LayoutRecipe(
+                tuple(ring), split + 1, tuple(fixed), min_width, min_area, door_reach, settings,
+                index, mass.base, mass.height, ctx.seed,
+                ("make_floor", shape.symbol) if args["same_layout"] else ("make_floor", *shape.path)))
         return [Child(successor=0, geometry=mass, scope=shape.scope, plan=plan)]
 
 

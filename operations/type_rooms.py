@@ -37,11 +37,18 @@ from .roomtyping.backtrack import RoomSet
 from .roomtyping.door_states import DOOR_STATE_CHOICES, with_door_states
 from .roomtyping.doors import (Interval, clear_windows, door_centre, door_opening,
                                door_spans, front_door_site, make_door)
-from .roomtyping.room_graph import (DoorSites, Pair, door_sites, reachability_pairs, room_graph,
-                                    rule_pairs)
-from .roomtyping.rules import RuleTable, load_rule_table
+from .roomtyping.room_graph import (DoorSites, Pair, access_pairs, door_sites, reachability_pairs,
+                                    room_graph, rule_pairs)
+from .roomtyping.rules import DEFAULT_TYPE, RuleTable, load_rule_table
+from .roomtyping.targets import target_areas
 
-__all__ = ["DOOR_POSITIONS", "DoorPosition", "TypeRooms", "type_plan"]
+__all__ = ["DOOR_POSITIONS", "DoorPosition", "MAX_REDRAWS", "CIRCULATION_TYPE", "TypeRooms", "type_plan"]
+
+MAX_REDRAWS = 12
+"""How many times a floor without a typing is re-drawn before the typing gives up."""
+
+CIRCULATION_TYPE = "Corridor"
+"""The type of carved corridors when the table has no circulation rule."""
 
 DoorPosition = Literal["center", "random"]
 
@@ -94,25 +101,83 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     """
     if door_position not in DOOR_POSITIONS:
         raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
+    first_error: NoSolutionError | None = None
+    fallback: FloorPlan | None = None  # typed, but with rooms no rule takes
+    for attempt in range(MAX_REDRAWS + 1):
+        try:
+            typed = _type_layout(plan, table, rng, units=units, strict=strict,
+                                 door_position=door_position)
+            leftover = [r.id for r in typed.rooms if r.type == DEFAULT_TYPE]
+            if not (leftover and table.has_access):
+                return _redrawn(typed, attempt, first_error)
+            fallback = fallback or _redrawn(typed, attempt, first_error)
+            first_error = first_error or NoSolutionError(
+                f"room{'s' if len(leftover) > 1 else ''} {', '.join(map(str, leftover))} fit no "
+                "rule of the table")
+        except NoSolutionError as error:
+            first_error = first_error or error
+        recipe = plan.layout
+        if recipe is None or attempt == MAX_REDRAWS:
+            break
+        areas = target_areas(table, recipe.free_rooms, _free_area(plan), units ** 2)
+        plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
+    if fallback is not None:
+        return fallback
+    assert first_error is not None
+    if plan.layout is None:
+        raise first_error
+    raise NoSolutionError(str(first_error).splitlines()[0], first_error.reasons + [
+        f"the floor was re-drawn {MAX_REDRAWS} times (cuts aimed at the table's areas) "
+        "without a layout the rules can type"]) from None
+
+
+def _redrawn(typed: FloorPlan, attempt: int, first_error: NoSolutionError | None) -> FloorPlan:
+    """``typed`` with a note on the re-draws it took (none: unchanged)."""
+    if not attempt or first_error is None:
+        return typed
+    why = str(first_error).splitlines()[0]
+    return typed.with_changes(diagnostics=typed.diagnostics + (Diagnostic(
+        "info", _STAGE, f"re-drew the floor {attempt} time{'s' if attempt > 1 else ''} with "
+        f"cuts aimed at the table's areas; the first layout had no typing: {why}",
+        floor=typed.index),))
+
+
+def _free_area(plan: FloorPlan) -> float:
+    return sum(r.area for r in plan.rooms if not r.circulation)
+
+
+def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
+                 units: float, strict: bool,
+                 door_position: Literal["center", "random"]) -> FloorPlan:
+    """:func:`type_plan` on one layout, without re-draws."""
     width = plan.settings.door_width
     sites = door_sites(plan, door_spans(plan), width)
     ids = tuple(room.id for room in plan.rooms)
     wants_front_door = table.outside_rule is not None and plan.index == 0
+    with_outer_wall = {w.rooms[0] for w in plan.walls if w.outer} | {w.rooms[1] for w in plan.walls if w.outer}
     rooms = RoomSet(areas=tuple(room.area for room in plan.rooms),
                     adjacency=sites.adjacency(ids),
                     entrances=(frozenset(i for i, room in enumerate(ids) if room in sites.outer)
                                if wants_front_door else None),
-                    ids=ids)
-    typing = assign_types(rooms, table, rng, area_scale=units ** 2)
+                    ids=ids,
+                    outer=frozenset(i for i, room in enumerate(ids) if room in with_outer_wall))
+    circulation = table.circulation_rule
+    pinned = {i: circulation.type if circulation is not None else CIRCULATION_TYPE
+              for i, room in enumerate(plan.rooms) if room.circulation}
+    typing = assign_types(rooms, table, rng, area_scale=units ** 2, pinned=pinned)
     notes = [Diagnostic(n.level, _STAGE, n.message, floor=plan.index, room=n.room)
              for n in typing.notes]
     types = dict(zip(ids, typing.types))
-    typed = plan.with_changes(rooms=tuple(replace(r, type=types[r.id]) for r in plan.rooms))
+    typed = plan.with_changes(rooms=tuple(_typed_room(r, types[r.id], table, units ** 2)
+                                          for r in plan.rooms))
 
     front_room, entry, entry_notes = _entry(typed, table, typing, sites, wants_front_door)
     notes += entry_notes
-    pairs = rule_pairs(types, sites, table)
-    extra = reachability_pairs(typed.rooms, pairs, sites, entry=entry)
+    if table.has_access:
+        pairs, extra = access_pairs(typed.rooms, sites, table, entry=entry), []
+    else:
+        pairs = rule_pairs(types, sites, table)
+        extra = reachability_pairs(typed.rooms, pairs, sites, entry=entry)
     if extra and strict:
         raise _unreachable_error(typed, pairs, sites, table, entry)
 
@@ -175,6 +240,10 @@ def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, sites: DoorSites,
     notes: list[Diagnostic] = []
     if wants_front_door and outside is not None:
         if placed is not None:
+            if placed not in sites.outer:
+                raise NoSolutionError(
+                    f"{outside.type} (room {placed}) has no outer wall long enough for a "
+                    f"{plan.settings.door_width:.2f} m front door and its margins")
             return placed, placed, notes
         candidates = [r for r in by_size if r.id in sites.outer]
         if not candidates:
@@ -197,6 +266,17 @@ def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, sites: DoorSites,
             f"upper floor: no front door; the stair arrives in room {entry} "
             f"({plan.room(entry).type})"), floor=plan.index, room=entry))
     return None, entry, notes
+
+
+def _typed_room(room: Room, type_name: str, table: RuleTable, area_scale: float) -> Room:
+    """The room with its type and what its rule says about it (circulation, private,
+    area range in m²)."""
+    rule = table.rule_for(type_name)
+    if rule is None:
+        return replace(room, type=type_name)
+    top = None if rule.max_size is None else rule.max_size * area_scale
+    return replace(room, type=type_name, circulation=room.circulation or rule.circulation,
+                   private=not rule.pass_through, area_range=(rule.size * area_scale, top))
 
 
 def _describe(room: Room) -> str:

@@ -34,6 +34,7 @@ import cga
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.model import OUTSIDE, Door, FloorPlan, FurnitureItem, Room, Wall, Window
+from cga.quality import quality_report
 from cga.scene import Scene, SceneNode
 
 __all__ = [
@@ -110,6 +111,7 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "windows": [_window(p, w) for p in floors for w in p.windows],
         "furniture": [_furniture(p, f, node_paths, leaves) for p in floors for f in p.furniture],
         "room_graph": [e for p in floors for e in _graph_edges(p)],
+        "quality": quality_report(list(floors)),
         "nodes": [_node(n) for n in nodes],
         "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
                         for d in scene.all_diagnostics()],
@@ -160,6 +162,8 @@ def _room(plan: FloorPlan, room: Room, node_paths: set[str]) -> dict[str, Any]:
         "area": room.area,
         "floor_area": float(room.interior.area),
         "node": path if path in node_paths else None,
+        "circulation": room.circulation,
+        "private": room.private,
     }
 
 
