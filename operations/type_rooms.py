@@ -106,7 +106,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     for attempt in range(MAX_REDRAWS + 1):
         try:
             typed = _type_layout(plan, table, rng, units=units, strict=strict,
-                                 door_position=door_position)
+                                 door_position=door_position, door_state=door_state)
             leftover = [r.id for r in typed.rooms if r.type == DEFAULT_TYPE]
             if not (leftover and table.has_access):
                 return _redrawn(typed, attempt, first_error)
@@ -147,8 +147,8 @@ def _free_area(plan: FloorPlan) -> float:
 
 
 def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
-                 units: float, strict: bool,
-                 door_position: Literal["center", "random"]) -> FloorPlan:
+                 units: float, strict: bool, door_position: Literal["center", "random"],
+                 door_state: str) -> FloorPlan:
     """:func:`type_plan` on one layout, without re-draws."""
     width = plan.settings.door_width
     sites = door_sites(plan, door_spans(plan), width)
