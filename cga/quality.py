@@ -35,7 +35,9 @@ def floor_quality(plan: FloorPlan) -> dict[str, Any]:
     graph = nx.Graph()
     graph.add_nodes_from(r.id for r in plan.rooms)
     graph.add_edges_from(d.rooms for d in plan.doors if OUTSIDE not in d.rooms)
-    entry = plan.room_graph.graph.get("entry") if plan.room_graph is not None else None
+    entry = plan.entry
+    if entry is None and plan.room_graph is not None:
+        entry = plan.room_graph.graph.get("entry")
     behind: dict[int, list[int]] = {}
     only_private: list[int] = []
     if entry is not None and entry in graph:

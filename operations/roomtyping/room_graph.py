@@ -209,7 +209,8 @@ def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
         neighbours[b].append(a)
 
     def rule(room: int) -> TypeRule | None:
-        return table.rule_for(by_id[room].type) if by_id[room].type else None
+        type_name = by_id[room].type
+        return table.rule_for(type_name) if type_name else None
 
     def passable(room: int) -> bool:
         r = rule(room)

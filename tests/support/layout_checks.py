@@ -64,7 +64,7 @@ def floor_problems(plan, table: Table) -> list[str]:
     for r in plan.rooms:
         if r.type not in table.types:
             problems.append(f"room {r.id} has type {r.type}, which no rule defines")
-    entry = plan.room_graph.graph["entry"]
+    entry = plan.entry if getattr(plan, "entry", None) is not None else plan.room_graph.graph["entry"]
     if plan.index == 0 and table.circulation:
         front = [d for d in plan.doors if d.is_front]
         if len(front) != 1 or types[front[0].swing_room] not in table.circulation:
