@@ -5,12 +5,14 @@ asserts types, adjacency and doors (docs/room_typing.md, docs/furniture.md)::
 
     from cga.authoring import floor_from_rectangles, type_floor, rooms_of_type, are_adjacent
 
-    def test_kitchen_opens_onto_the_living_room():
-        plan = floor_from_rectangles([(0, 0, 6, 10), (6, 0, 14, 5), (6, 5, 14, 10)])
+    def test_every_room_opens_onto_the_hall():
+        plan = floor_from_rectangles([(0, 4, 14, 5.6), (0, 0, 7, 4), (7, 0, 14, 4),
+                                      (0, 5.6, 5, 10), (5, 5.6, 9, 10), (9, 5.6, 14, 10)],
+                                     circulation=[0])
         for seed in range(20):
             typed = type_floor(plan, "house_types.csv", seed=seed)
             assert rooms_of_type(typed, "Livingroom")
-            assert are_adjacent(typed, "Kitchen", "Livingroom")
+            assert doors_between(typed, "Bedroom", "Hall")
 
 Rooms may be named by id (``int``) or by type (``str``: any room of that type);
 :data:`~cga.model.OUTSIDE` or ``"outside"`` names the outside. Everything is in metres
@@ -25,7 +27,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from pathlib import Path
 from typing import Any, Literal
 
@@ -50,7 +52,8 @@ RoomRef = int | str
 
 
 def floor_from_rectangles(rectangles: Sequence[tuple[float, float, float, float]], *,
-                          index: int = 0, **settings: Any) -> FloorPlan:
+                          index: int = 0, circulation: Collection[int] = (),
+                          **settings: Any) -> FloorPlan:
     """An untyped floor whose room ``i`` is ``rectangles[i]`` = ``(x0, z0, x1, z1)`` (m).
 
     Parameters
@@ -59,6 +62,9 @@ def floor_from_rectangles(rectangles: Sequence[tuple[float, float, float, float]
         Axis-aligned rooms tiling a connected footprint without holes.
     index:
         Floor number; 0 (the ground floor) is the one that gets a front door.
+    circulation:
+        Ids of the rectangles that are halls or corridors (as ``make_floor`` carves
+        them): they take the table's circulation type.
     **settings:
         :class:`~cga.model.FloorSettings` fields, e.g. ``door_width=1.0``,
         ``wall_thickness=0.15``, ``windows_per_wall=2``.
@@ -74,7 +80,8 @@ def floor_from_rectangles(rectangles: Sequence[tuple[float, float, float, float]
             close = difflib.get_close_matches(name, known, n=1)
             hint = f"; did you mean '{close[0]}'?" if close else f"; known: {', '.join(known)}"
             raise UsageError(f"unknown floor setting '{name}'{hint}")
-    return plan_from_rectangles(rectangles, settings=FloorSettings(**settings), index=index)
+    return plan_from_rectangles(rectangles, settings=FloorSettings(**settings), index=index,
+                                circulation=circulation)
 
 
 def type_floor(plan: FloorPlan, rules_path: str | Path, *, seed: int = 0, strict: bool = False,

@@ -34,6 +34,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .errors import CGAError, ExportError, UsageError
+from .quality import quality_report
 
 if TYPE_CHECKING:  # pragma: no cover
     from .scene import Scene
@@ -71,6 +72,10 @@ class BatchRecord:
     items_left_out: int = 0
     checks: dict[str, Any] = field(default_factory=dict)
     error: str | None = None
+    quality: dict[str, Any] = field(default_factory=dict)
+    """Layout quality over the floors (:mod:`cga.quality`): worst circulation share,
+    most doors of a room, counts of private rooms passed through, rooms reached only
+    through private rooms, areas out of range and rule-less rooms."""
 
     def to_json(self) -> str:
         return json.dumps(self.__dict__, sort_keys=True)
@@ -201,6 +206,7 @@ def _summarise(scene: Scene, seconds: float, seed: int) -> BatchRecord:
         items=items,
         items_left_out=left_out,
         checks=checks,
+        quality=_quality_totals(quality_report(list(scene.floors))),
     )
 
 
@@ -225,6 +231,20 @@ def _failure(out_dir: Path, seed: int, message: str, seconds: float,
     _publish(out_dir, seed, staging)
     return BatchRecord(seed=seed, valid=False, seconds=round(seconds, 4),
                        error=message.splitlines()[0] if message else "failed")
+
+
+def _quality_totals(floors: list[dict[str, Any]]) -> dict[str, Any]:
+    """One manifest line's worth of :func:`cga.quality.quality_report`."""
+    if not floors:
+        return {}
+    return {
+        "circulation_share": [f["circulation_share"] for f in floors],
+        "max_doors_per_room": max((max(f["doors_per_room"].values(), default=0) for f in floors)),
+        "pass_through_private": sum(len(f["pass_through_private"]) for f in floors),
+        "reached_only_through_private": sum(len(f["reached_only_through_private"]) for f in floors),
+        "area_out_of_range": sum(len(f["area_out_of_range"]) for f in floors),
+        "ruleless": sum(len(f["ruleless"]) for f in floors),
+    }
 
 
 def _build_one(grammar: str, seed: int, out_dir: str, build_options: dict[str, Any]) -> BatchRecord:

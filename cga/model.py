@@ -191,6 +191,11 @@ class Room:
     """True for space whose job is to connect (hall, corridor, landing, stair core:
     docs/room_typing.md): drawn as circulation, never furnished as a private room, and where a
     stair core may stand."""
+    private: bool = False
+    """True when the room's rule forbids passing through it (``passThrough`` false:
+    bedrooms, bathrooms), set by ``type_rooms``."""
+    area_range: tuple[float, float | None] | None = None
+    """The area (m²) the room's rule asks for: ``(Size, maxSize)``, None without a rule."""
 
     @property
     def area(self) -> float:
@@ -481,6 +486,13 @@ class FloorPlan:
     stairs: tuple[Stair, ...] = ()
     """Stairs that start or end on this floor (set once the storeys are stacked)."""
 
+    def with_stair_core(self, core: StairCore, room: int = 0) -> "FloorPlan":
+        """The plan with face ``room`` (make_floor's first fixed face) as the stair core,
+        typed ``Stair``: a circulation room the typing rules never take."""
+        rooms = tuple(replace(r, type="Stair", circulation=True) if r.id == room else r
+                      for r in self.rooms)
+        return replace(self, rooms=rooms, core=core, core_room=room)
+
     @property
     def stair_up(self) -> Stair | None:
         """The stair from this floor to the one above."""
@@ -496,6 +508,9 @@ class FloorPlan:
         """The opening cut into this floor's slab for the stair below, if any."""
         below = self.stair_down
         return below.polygon if below is not None else None
+    layout: Any = None
+    """How ``make_floor`` drew this floor (``cga.operations.floorplan.layout.LayoutRecipe``),
+    so a typing that finds none can ask for a re-draw; None for hand-made floors."""
 
     @property
     def floor_y(self) -> float:

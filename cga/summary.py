@@ -30,9 +30,12 @@ def _floor_summary(plan: FloorPlan) -> dict[str, Any]:
             "doors": sum(1 for d in plan.doors if room.id in d.rooms),
             "items": sum(1 for f in plan.furniture if f.room == room.id and not f.is_detail),
         })
+    area = sum(r.area for r in plan.rooms)
     return {
         "index": plan.index,
         "area_m2": round(float(plan.footprint.area), 2),
+        "circulation_share": round(sum(r.area for r in plan.rooms if r.circulation) / area, 4)
+        if area else 0.0,
         "rooms": rooms,
         "doors": len(plan.doors),
         "windows": len(plan.windows),
@@ -44,7 +47,7 @@ def summary_dict(scene: Scene, *, out_dir: str | Path | None = None) -> dict[str
     """The build summary as JSON-ready data.
 
     Keys: ``name``, ``seed``, ``units``, ``floors`` (per floor: ``index``, ``area_m2``,
-    ``rooms`` [``id``, ``type``, ``area_m2``, ``doors``, ``items``], ``doors``,
+    ``circulation_share`` (halls and corridors over the rooms' area), ``rooms`` [``id``, ``type``, ``area_m2``, ``doors``, ``items``], ``doors``,
     ``windows``, ``items``), ``shapes`` (terminal masses and faces), ``diagnostics``
     (``level``, ``stage``, ``message``, ``floor``, ``room``), ``checks`` (per check:
     ``passed``, ``summary``), ``timings`` (seconds per stage and operation) and
@@ -96,6 +99,7 @@ def print_summary(scene: Scene, *, out_dir: str | Path | None = None, console: A
                   f"{data['shapes']} other shape{'s' * (data['shapes'] != 1)})")
     for floor in data["floors"]:
         console.print(f"[bold]floor {floor['index']}[/bold]: {floor['area_m2']:.1f} m², "
+                      f"circulation {100 * floor['circulation_share']:.0f} %, "
                       f"{floor['doors']} doors, {floor['windows']} windows, "
                       f"{floor['items']} items", highlight=False)
         table = Table()

@@ -32,6 +32,8 @@ from cga.shape import Mass, Shape
 from cga.operation import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
 from .floorplan.bsp import FixedFace, partition
+from .floorplan.layout import LayoutRecipe
+from .floorplan.treemap import thesis_partition
 from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,
                                     circulation_faces)
 from .floorplan.errors import PartitionError
@@ -63,7 +65,8 @@ class MakeFloor(Operation):
         Param("min_room_area", "area", default=6.0, keyword_only=True,
               doc="no room smaller than this (m²)"),
         Param("cut_range", "range", default=(0.35, 0.65), keyword_only=True,
-              doc="cut position drawn from this fraction of a room's extent"),
+              doc="cut position drawn from this fraction of a room's extent; (0.5, 0.5) "
+                  "is the thesis' partition: mid cuts, alternating axes (Algorithm 8)"),
         Param("same_layout", "bool", default=False, keyword_only=True,
               doc="every floor made by this rule gets the same layout"),
         Param("window_sill", "length", default=0.9, keyword_only=True,
@@ -150,10 +153,18 @@ class MakeFloor(Operation):
             pieces = tile_with_fixed_faces(ring, [f.polygon for f in fixed])[1]
             cuts = max(0, split + 1 - pieces - rooms_fixed)
         door_reach = settings.door_width + 2 * (DOOR_MARGIN + settings.wall_thickness)
+        thesis = (lo, hi) == (0.5, 0.5)
+        if thesis and fixed:
+            raise DerivationError("the thesis' partition (cut_range = (0.5, 0.5)) has no "
+                                  "corridors or stair core; use another cut_range, or "
+                                  'stair = "none" for a single storey')
         for _ in range(_CORE_ATTEMPTS):
             try:
-                result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
-                                   cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
+                if thesis:
+                    result = thesis_partition(ring, split)
+                else:
+                    result = partition(ring, cuts, rng, min_width=min_width, min_area=min_area,
+                                       cut_range=(lo, hi), fixed=fixed, min_contact=door_reach)
             except PartitionError as error:
                 raise DerivationError(f"make_floor cannot cut this footprint into rooms: {error}",
                                       hint=_footprint_hint(footprint)) from None
@@ -165,7 +176,7 @@ class MakeFloor(Operation):
                 raise DerivationError(f"the floor is too narrow for its walls: {error}") from None
             if core is None:
                 break
-            plan = _with_core(plan, core)
+            plan = plan.with_stair_core(core)
             if _core_has_door(plan):
                 break
         else:
@@ -177,6 +188,12 @@ class MakeFloor(Operation):
             ctx.report(Diagnostic("warning", "make_floor",
                                   f"made {len(result.dcel.faces)} rooms instead of {split + 1}: "
                                   f"{result.shortfall}", floor=index))
+        if not thesis:  # the thesis' partition is the same every time: nothing to re-draw
+            plan = plan.with_changes(layout=LayoutRecipe(
+                tuple(ring), split + 1, tuple(fixed), min_width, min_area, door_reach, settings,
+                index, mass.base, mass.height, ctx.seed,
+                ("make_floor", shape.symbol) if args["same_layout"] else ("make_floor", *shape.path),
+                core=core))
         return [Child(successor=0, geometry=mass, scope=shape.scope, plan=plan)]
 
 
@@ -212,7 +229,7 @@ def _core_face(core: StairCore, fixed: list[FixedFace]) -> FixedFace:
     """The core as the partition's first fixed face, never cut. It is not marked as
     circulation for the partition, which would keep every room in touch with it: rooms
     reach the stair through the halls and rooms next to its landing; the core's room is
-    flagged as circulation afterwards (:func:`_with_core`).
+    flagged as circulation afterwards (:meth:`FloorPlan.with_stair_core`).
 
     Raises
     ------
@@ -232,13 +249,6 @@ def _core_face(core: StairCore, fixed: list[FixedFace]) -> FixedFace:
 def _bounds(polygon: Polygon) -> str:
     x0, z0, x1, z1 = polygon.bounds
     return f"x {x0:.2f}..{x1:.2f}, z {z0:.2f}..{z1:.2f}"
-
-
-def _with_core(plan: FloorPlan, core: StairCore) -> FloorPlan:
-    """The plan with face 0, the core, typed ``Stair`` (a circulation room)."""
-    rooms = tuple(replace(r, type="Stair", circulation=True) if r.id == 0 else r
-                  for r in plan.rooms)
-    return plan.with_changes(rooms=rooms, core=core, core_room=0)
 
 
 def _core_has_door(plan: FloorPlan) -> bool:

@@ -46,12 +46,19 @@ from .roomtyping.backtrack import RoomSet
 from .roomtyping.door_states import DOOR_STATE_CHOICES, with_door_states
 from .roomtyping.doors import (Interval, clear_windows, door_centre, door_opening,
                                door_spans, front_door_site, make_door)
-from .roomtyping.room_graph import (DoorSites, Pair, door_sites, reachability_pairs, room_graph,
-                                    rule_pairs)
-from .roomtyping.rules import RuleTable, load_rule_table
+from .roomtyping.room_graph import (DoorSites, Pair, access_pairs, door_sites, reachability_pairs,
+                                    room_graph, rule_pairs)
+from .roomtyping.rules import DEFAULT_TYPE, RuleTable, load_rule_table
+from .roomtyping.targets import target_areas
 from .stairs.access import core_door_spans
 
-__all__ = ["DOOR_POSITIONS", "DoorPosition", "TypeRooms", "type_plan"]
+__all__ = ["DOOR_POSITIONS", "DoorPosition", "MAX_REDRAWS", "CIRCULATION_TYPE", "TypeRooms", "type_plan"]
+
+MAX_REDRAWS = 12
+"""How many times a floor without a typing is re-drawn before the typing gives up."""
+
+CIRCULATION_TYPE = "Corridor"
+"""The type of carved corridors when the table has no circulation rule."""
 
 DoorPosition = Literal["center", "random"]
 
@@ -104,19 +111,76 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     """
     if door_position not in DOOR_POSITIONS:
         raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
+    first_error: NoSolutionError | None = None
+    fallback: FloorPlan | None = None  # typed, but with rooms no rule takes
+    for attempt in range(MAX_REDRAWS + 1):
+        try:
+            typed = _type_layout(plan, table, rng, units=units, strict=strict,
+                                 door_position=door_position, door_state=door_state)
+            leftover = [r.id for r in typed.rooms if r.type == DEFAULT_TYPE]
+            if not (leftover and table.has_access):
+                return _redrawn(typed, attempt, first_error)
+            fallback = fallback or _redrawn(typed, attempt, first_error)
+            first_error = first_error or NoSolutionError(
+                f"room{'s' if len(leftover) > 1 else ''} {', '.join(map(str, leftover))} fit no "
+                "rule of the table")
+        except NoSolutionError as error:
+            first_error = first_error or error
+        recipe = plan.layout
+        if recipe is None or attempt == MAX_REDRAWS:
+            break
+        areas = target_areas(table, recipe.free_rooms, _free_area(plan), units ** 2)
+        plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
+    if fallback is not None:
+        return fallback
+    assert first_error is not None
+    if plan.layout is None:
+        raise first_error
+    raise NoSolutionError(str(first_error).splitlines()[0], first_error.reasons + [
+        f"the floor was re-drawn {MAX_REDRAWS} times (cuts aimed at the table's areas) "
+        "without a layout the rules can type"]) from None
+
+
+def _redrawn(typed: FloorPlan, attempt: int, first_error: NoSolutionError | None) -> FloorPlan:
+    """``typed`` with a note on the re-draws it took (none: unchanged)."""
+    if not attempt or first_error is None:
+        return typed
+    why = str(first_error).splitlines()[0]
+    return typed.with_changes(diagnostics=typed.diagnostics + (Diagnostic(
+        "info", _STAGE, f"re-drew the floor {attempt} time{'s' if attempt > 1 else ''} with "
+        f"cuts aimed at the table's areas; the first layout had no typing: {why}",
+        floor=typed.index),))
+
+
+def _free_area(plan: FloorPlan) -> float:
+    return sum(r.area for r in plan.rooms if not r.circulation)
+
+
+def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
+                 units: float, strict: bool, door_position: Literal["center", "random"],
+                 door_state: str) -> FloorPlan:
+    """:func:`type_plan` on one layout, without re-draws."""
     width = plan.settings.door_width
     sites = door_sites(plan, core_door_spans(plan, door_spans(plan)), width)
     fixed = {room.id: room.type for room in plan.rooms if room.type is not None}
     free = [room for room in plan.rooms if room.id not in fixed]
     ids = tuple(room.id for room in free)
     wants_front_door = table.outside_rule is not None and plan.index == 0
-    landing = _landing_neighbours(plan, sites)
+    with_outer_wall = {w.rooms[0] for w in plan.walls if w.outer} | {w.rooms[1] for w in plan.walls if w.outer}
+    outer = frozenset(i for i, room in enumerate(ids) if room in with_outer_wall)
+    circulation = table.circulation_rule
+    pinned = {i: circulation.type if circulation is not None else CIRCULATION_TYPE
+              for i, room in enumerate(free) if room.circulation}
+    # Access tables pin circulation and enter every room along it from the entry (the
+    # stair core upstairs), so only thesis-style tables steer their entrance room to
+    # the landing.
+    landing = None if table.has_access else _landing_neighbours(plan, sites)
     choices = _entrance_choices(ids, sites, wants_front_door, landing)
     for attempt, entrances in enumerate(choices, start=1):
         rooms = RoomSet(areas=tuple(room.area for room in free), adjacency=sites.adjacency(ids),
-                        entrances=entrances, ids=ids)
+                        entrances=entrances, ids=ids, outer=outer)
         try:
-            typing = assign_types(rooms, table, rng, area_scale=units ** 2)
+            typing = assign_types(rooms, table, rng, area_scale=units ** 2, pinned=pinned)
             break
         except NoSolutionError:
             if attempt == len(choices):
@@ -125,15 +189,21 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     notes = [Diagnostic(n.level, _STAGE, n.message, floor=plan.index, room=n.room)
              for n in typing.notes]
     types = {**dict(zip(ids, typing.types)), **fixed}
-    typed = plan.with_changes(rooms=tuple(replace(r, type=types[r.id]) for r in plan.rooms))
+    typed = plan.with_changes(rooms=tuple(
+        r if r.id in fixed else _typed_room(r, types[r.id], table, units ** 2)
+        for r in plan.rooms))
 
     front_room, entry, entry_notes = _entry(typed, table, typing, ids, sites, wants_front_door)
     notes += entry_notes
-    pairs = rule_pairs(types, sites, table)
-    stair_pair = _stair_pair(typed, table, typing, ids, sites)
-    if stair_pair is not None:
-        pairs.append(stair_pair)
-    extra = reachability_pairs(typed.rooms, pairs, sites, entry=entry)
+    if table.has_access:  # one door into every room, the stair core's included
+        pairs, extra = access_pairs(typed.rooms, sites, table, entry=entry), []
+        stair_pair = next((p for p in pairs if typed.core_room in p), None)
+    else:
+        pairs = rule_pairs(types, sites, table)
+        stair_pair = _stair_pair(typed, table, typing, ids, sites)
+        if stair_pair is not None:
+            pairs.append(stair_pair)
+        extra = reachability_pairs(typed.rooms, pairs, sites, entry=entry)
     if extra and strict:
         raise _unreachable_error(typed, pairs, sites, table, entry)
 
@@ -198,6 +268,10 @@ def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, ids: Sequence[int]
     notes: list[Diagnostic] = []
     if wants_front_door and outside is not None:
         if placed is not None:
+            if placed not in sites.outer:
+                raise NoSolutionError(
+                    f"{outside.type} (room {placed}) has no outer wall long enough for a "
+                    f"{plan.settings.door_width:.2f} m front door and its margins")
             return placed, placed, notes
         candidates = [r for r in by_size if r.id in sites.outer and r.id != plan.core_room]
         if not candidates:
@@ -271,6 +345,17 @@ def _stair_pair(plan: FloorPlan, table: RuleTable, typing: Typing, ids: Sequence
     best = min(neighbours, key=lambda r: (r != placed_id, not plan.room(r).circulation,
                                           -plan.room(r).area, r))
     return (min(core, best), max(core, best))
+
+
+def _typed_room(room: Room, type_name: str, table: RuleTable, area_scale: float) -> Room:
+    """The room with its type and what its rule says about it (circulation, private,
+    area range in m²)."""
+    rule = table.rule_for(type_name)
+    if rule is None:
+        return replace(room, type=type_name)
+    top = None if rule.max_size is None else rule.max_size * area_scale
+    return replace(room, type=type_name, circulation=room.circulation or rule.circulation,
+                   private=not rule.pass_through, area_range=(rule.size * area_scale, top))
 
 
 def _describe(room: Room) -> str:

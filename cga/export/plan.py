@@ -32,7 +32,7 @@ from typing import Literal
 
 import numpy as np
 from shapely import affinity
-from shapely.geometry import MultiPolygon, Point as ShapelyPoint, Polygon
+from shapely.geometry import LineString, MultiPolygon, Point as ShapelyPoint, Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.ops import polylabel, unary_union
 
@@ -66,6 +66,9 @@ _RUG = Style(stroke="#9c9184", width=0.9, dash=(4.0, 3.0))
 _WINDOW_GAP = Style(fill="#ffffff", stroke=_INK, width=0.8)
 _GLASS = Style(stroke="#4f86b0", width=1.0)
 _LEAF = Style(stroke=_INK, width=1.8)
+_HATCHING = Style(stroke="#b9ae9f", width=0.8)
+_HATCH_SPACING = 0.35  # m between hatch lines
+_HATCH_MIN_PX = 6.0  # and at least this many pixels
 _SWING = Style(stroke="#7d7369", width=0.9, dash=(3.0, 2.5))
 _ENTRANCE = Style(fill="#c0392b")
 _ENTRANCE_TEXT = "entrance"
@@ -155,9 +158,11 @@ def export_plans(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
     for plan in scene.floors:
         storey = "ground floor" if plan.index == 0 else f"floor {plan.index}"
         typed = sum(1 for r in plan.rooms if r.type)
+        area = sum(r.area for r in plan.rooms)
+        share = sum(r.area for r in plan.rooms if r.circulation) / area if area else 0.0
         subtitle = (f"{len(plan.rooms)} rooms ({typed} typed) · {plan.footprint.area:.1f} m² "
-                    f"footprint · {len(plan.doors)} doors · {len(plan.windows)} windows · "
-                    f"seed {scene.seed}")
+                    f"footprint · circulation {100 * share:.0f} % · {len(plan.doors)} doors · "
+                    f"{len(plan.windows)} windows · seed {scene.seed}")
         drawing = plan_drawing(plan, title=f"{name} — {storey}", subtitle=subtitle)
         stem = f"{name}.floor{plan.index}"
         written.append(atomic_write(Path(out_dir) / f"{stem}.svg", render_svg(drawing)))
@@ -176,6 +181,24 @@ def _draw_rooms(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
         style = Style(fill=hex_color(room_color(room.type)))
         for rings in paper.areas(room.polygon):
             drawing.add("rooms", Area(rings, style, css_class="room"))
+        if room.circulation:
+            _hatch(drawing, paper, room.interior)
+
+
+def _hatch(drawing: Drawing, paper: _Paper, region: Polygon, layer: str = "rooms") -> None:
+    """Diagonal hatching over circulation (halls, corridors), as plans mark it."""
+    min_x, min_z, max_x, max_z = region.bounds
+    spacing = max(_HATCH_SPACING, _HATCH_MIN_PX / paper.scale)  # small plans: fewer lines
+    span = (max_x - min_x) + (max_z - min_z)
+    count = int(span / spacing) + 1
+    for k in range(count + 1):
+        c = min_x + min_z + k * spacing  # the line x + z = c
+        line = LineString([(c - min_z + 1, min_z - 1), (c - max_z - 1, max_z + 1)])
+        piece = line.intersection(region)
+        for part in getattr(piece, "geoms", [piece]):
+            if isinstance(part, LineString) and not part.is_empty:
+                drawing.add(layer, Polyline(tuple(paper.point(x, z) for x, z in part.coords),
+                                              _HATCHING, css_class="circulation"))
 
 
 def _item_label(item: FurnitureItem) -> str:
@@ -452,5 +475,8 @@ def _draw_legend(drawing: Drawing, plan: FloorPlan, origin: Point) -> None:
                                        css_class="legend"))
         count = sum(1 for r in plan.rooms if r.type == room_type)
         text = (room_type or "untyped") + (f" ×{count}" if count > 1 else "")
+        if any(r.circulation for r in plan.rooms if r.type == room_type):
+            _hatch(drawing, _Paper(0.0, 0.0, 10.0, x, top), Polygon(
+                [(0, 0), (1.6, 0), (1.6, 1.4), (0, 1.4)]), "annotation")  # hatched as in the plan
         drawing.add("annotation", Text((x + 24, top + 11), text, 11, _INK, "start",
                                        css_class="legend"))

@@ -35,6 +35,7 @@ import cga
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.model import OUTSIDE, Door, Flight, FloorPlan, FurnitureItem, Room, Stair, Wall, Window
+from cga.quality import quality_report
 from cga.scene import Scene, SceneNode
 
 __all__ = [
@@ -113,6 +114,7 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "furniture": [_furniture(p, f, node_paths, leaves) for p in floors for f in p.furniture],
         "room_graph": [e for p in floors for e in _graph_edges(p)] + [_stair_edge(s) for s in stairs],
         "stairs": [_stair(s, node_paths) for s in stairs],
+        "quality": quality_report(list(floors)),
         "nodes": [_node(n) for n in nodes],
         "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
                         for d in scene.all_diagnostics()],
@@ -166,6 +168,8 @@ def _room(plan: FloorPlan, room: Room, node_paths: set[str]) -> dict[str, Any]:
         "area": room.area,
         "floor_area": float(room.interior.area),
         "node": path if path in node_paths else None,
+        "circulation": room.circulation,
+        "private": room.private,
     }
 
 

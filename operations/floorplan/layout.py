@@ -13,7 +13,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from cga.model import FloorPlan, FloorSettings
+from cga.model import FloorPlan, FloorSettings, StairCore
 from cga.randomness import stream
 
 from .assemble import plan_from_dcel
@@ -45,6 +45,8 @@ class LayoutRecipe:
     height: float
     seed: int
     key: tuple[str, ...]
+    core: StairCore | None = None
+    """The building's stair core, the first of ``fixed``, kept on every re-draw."""
 
     @property
     def free_rooms(self) -> int:
@@ -67,4 +69,6 @@ class LayoutRecipe:
         plan = plan_from_dcel(result.dcel, settings=self.settings, index=self.index,
                               elevation=self.elevation, height=self.height,
                               circulation=result.circulation)
+        if self.core is not None:
+            plan = plan.with_stair_core(self.core)
         return plan.with_changes(layout=self)

@@ -13,7 +13,7 @@ footprint; they need not come from a BSP (pinwheel layouts work too)::
 from __future__ import annotations
 
 import itertools
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 
 import shapely
 from shapely.geometry import Polygon, box
@@ -31,7 +31,8 @@ Rectangle = tuple[float, float, float, float]
 
 
 def plan_from_rectangles(rectangles: Sequence[Rectangle], *, settings: FloorSettings = FloorSettings(),
-                         index: int = 0, elevation: float = 0.0, height: float = 3.0) -> FloorPlan:
+                         index: int = 0, elevation: float = 0.0, height: float = 3.0,
+                         circulation: Collection[int] = ()) -> FloorPlan:
     """A floor whose rooms are the given rectangles.
 
     Parameters
@@ -44,6 +45,8 @@ def plan_from_rectangles(rectangles: Sequence[Rectangle], *, settings: FloorSett
         Wall thickness and window sizes (windows go on every outer wall segment).
     index, elevation, height
         Floor number, y of the bottom of the floor slab, storey height.
+    circulation
+        Ids of the rooms that are halls or corridors (as ``make_floor`` carves them).
 
     Returns
     -------
@@ -67,12 +70,17 @@ def plan_from_rectangles(rectangles: Sequence[Rectangle], *, settings: FloorSett
     if not rects:
         raise UsageError("plan_from_rectangles needs at least one rectangle")
     _check_rectangles(rects, settings.wall_thickness)
+    unknown = sorted(set(circulation) - set(range(len(rects))))
+    if unknown:
+        raise UsageError(f"circulation names rooms {unknown}, but there are only "
+                         f"{len(rects)} rectangles (ids 0..{len(rects) - 1})")
     corners = sorted({corner for x0, z0, x1, z1 in rects
                       for corner in ((x0, z0), (x1, z0), (x1, z1), (x0, z1))})
     rings = [_subdivided_ring(r, corners) for r in rects]
     try:
         dcel = DCEL.from_polygons(rings)
-        return plan_from_dcel(dcel, settings=settings, index=index, elevation=elevation, height=height)
+        return plan_from_dcel(dcel, settings=settings, index=index, elevation=elevation, height=height,
+                              circulation=circulation)
     except PartitionError as error:
         raise UsageError(f"rectangles do not make a floor: {error}") from None
 

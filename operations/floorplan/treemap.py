@@ -121,7 +121,7 @@ def _share(pieces: list[Polygon], areas: list[float], min_width: float,
         k = max(range(len(pieces)), key=lambda k: (quota[k], -k))
         quota[k] -= 1
     left = [p.area for p in pieces]
-    depth = [min(p.bounds[2] - p.bounds[0], p.bounds[3] - p.bounds[1]) for p in pieces]
+    depth = [_strip_depth(p) for p in pieces]
     noise = rng.uniform(0, 1e-3, size=len(pieces))
     groups: list[list[float]] = [[] for _ in pieces]
     fits = [[k for k in range(len(pieces)) if a >= min_width * depth[k] * 0.999] for a in areas]
@@ -130,9 +130,18 @@ def _share(pieces: list[Polygon], areas: list[float], min_width: float,
         options = [k for k in fits[i] if k in open_] or open_ or list(range(len(pieces)))
         k = max(options, key=lambda k: (left[k] / max(quota[k] - len(groups[k]), 1)
                                         / pieces[k].area + noise[k], -k))
-        groups[k].append(areas[i])
-        left[k] -= areas[i]
+        # no room narrower than min_width across the piece: smaller areas grow to that
+        area = max(areas[i], min_width * depth[k] * 1.02)
+        groups[k].append(area)
+        left[k] -= area
     return groups
+
+
+def _strip_depth(piece: Polygon) -> float:
+    """The depth of a strip-like piece (one side at least twice the other: the rooms
+    along a corridor); 0 for compact pieces, whose rooms can be cut either way."""
+    w, d = piece.bounds[2] - piece.bounds[0], piece.bounds[3] - piece.bounds[1]
+    return min(w, d) if max(w, d) >= 2 * min(w, d) else 0.0
 
 
 def _groupings(wanted: list[float], rng: np.random.Generator) -> list[tuple[list[float], list[float]]]:

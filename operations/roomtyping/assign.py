@@ -25,7 +25,8 @@ randomness comes from the ``rng`` argument.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -84,7 +85,7 @@ def draw_first_rule(rules: Sequence[TypeRule], rng: np.random.Generator) -> int:
 
 
 def assign_types(rooms: RoomSet, table: RuleTable, rng: np.random.Generator, *,
-                 area_scale: float = 1.0) -> Typing:
+                 area_scale: float = 1.0, pinned: Mapping[int, str] | None = None) -> Typing:
     """Type every room by the table's rules.
 
     Parameters
@@ -98,6 +99,10 @@ def assign_types(rooms: RoomSet, table: RuleTable, rng: np.random.Generator, *,
         The only source of randomness.
     area_scale:
         m² per area unit of the table's ``Size`` column (``units²`` of the grammar).
+    pinned:
+        Rooms whose type is fixed beforehand (room index → type): corridors and halls
+        carved by ``make_floor`` take the table's circulation type. They count for their
+        rule and as neighbours, and need no neighbour themselves.
 
     Returns
     -------
@@ -113,10 +118,12 @@ def assign_types(rooms: RoomSet, table: RuleTable, rng: np.random.Generator, *,
     ----------
     Thesis §3.3 and §5.2.2, Algorithms 2 (processRules) and 11 (assignRules).
     """
-    mandatory = table.mandatory
-    specs = [RuleSpec(type=r.type, min_area=r.size * area_scale,
-                      neighbours=frozenset(r.neighbours), outside=r.outside)
-             for r in mandatory]
+    pinned = dict(pinned or {})
+    fixed_types = set(pinned.values())
+    mandatory = tuple(r for r in table.mandatory if r.type not in fixed_types)
+    fixed_specs = [RuleSpec(type=t, min_area=0.0, neighbours=frozenset(),
+                            outside=_is_outside(table, t), pinned=i) for i, t in pinned.items()]
+    specs = fixed_specs + [_spec(r, area_scale) for r in mandatory]
     notes: list[TypingNote] = []
     if len(rooms) < len(specs):
         kept = _rules_that_fit(rooms, specs, rng)
@@ -129,7 +136,7 @@ def assign_types(rooms: RoomSet, table: RuleTable, rng: np.random.Generator, *,
         first = _priority(specs)[0] if specs else 0
     else:
         skipped = ()
-        first = draw_first_rule(mandatory, rng)
+        first = 0 if fixed_specs or not mandatory else draw_first_rule(mandatory, rng)
     result = place_rules(rooms, specs, first=first, rng=rng)
     if isinstance(result, Unplaceable):
         raise _no_solution(rooms, specs, result, table)
@@ -138,6 +145,8 @@ def assign_types(rooms: RoomSet, table: RuleTable, rng: np.random.Generator, *,
     for spec, room in zip(specs, result.rooms):
         types[room] = spec.type
     _fill_optional(rooms, table, types, rng, area_scale=area_scale, skipped=set(skipped))
+    for i in pinned:  # a pinned type not in the table still names its room
+        types[i] = pinned[i]
     leftover = [i for i, t in enumerate(types) if t is None]
     if leftover:
         names = ", ".join(rooms.name(i) for i in leftover)
@@ -148,6 +157,28 @@ def assign_types(rooms: RoomSet, table: RuleTable, rng: np.random.Generator, *,
                   mandatory={spec.type: room for spec, room in zip(specs, result.rooms)},
                   exempt=None if result.exempt is None else specs[result.exempt].type,
                   skipped=skipped, backtracks=result.backtracks, notes=tuple(notes))
+
+
+def _spec(rule: TypeRule, area_scale: float) -> RuleSpec:
+    return RuleSpec(type=rule.type, min_area=rule.size * area_scale,
+                    neighbours=frozenset(rule.placement), outside=rule.outside,
+                    max_area=math.inf if rule.max_size is None else rule.max_size * area_scale,
+                    needs_window=rule.needs_window)
+
+
+def _is_outside(table: RuleTable, type_name: str) -> bool:
+    rule = table.rule_for(type_name)
+    return rule is not None and rule.outside
+
+
+def _fits(rooms: RoomSet, i: int, rule: TypeRule, area_scale: float) -> bool:
+    """Whether room ``i`` has the size (and outer wall) the rule asks for."""
+    area = rooms.areas[i]
+    if area < rule.size * area_scale:
+        return False
+    if rule.max_size is not None and area > rule.max_size * area_scale:
+        return False
+    return not rule.needs_window or rooms.outer is None or i in rooms.outer
 
 
 def _priority(specs: Sequence[RuleSpec]) -> list[int]:
@@ -223,8 +254,8 @@ def _fill_optional(rooms: RoomSet, table: RuleTable, types: list[str | None],
             if counts.get(rule.type, 0) >= rule.appearance:
                 continue
             room = next((i for i in preference
-                         if types[i] is None and rooms.areas[i] >= rule.size * area_scale
-                         and any(types[j] in rule.neighbours for j in rooms.adjacency[i])),
+                         if types[i] is None and _fits(rooms, i, rule, area_scale)
+                         and any(types[j] in rule.placement for j in rooms.adjacency[i])),
                         None)
             if room is None:
                 continue

@@ -31,6 +31,7 @@ tried first. Only if that fails too is there no typing.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -46,13 +47,15 @@ PREFERENCE_JITTER = 0.35
 
 @dataclass(frozen=True)
 class RoomSet:
-    """The rooms as the search sees them: areas (m²), door-capable adjacency and which
-    rooms can take the front door (``entrances``; None when no front door is wanted)."""
+    """The rooms as the search sees them: areas (m²), door-capable adjacency, which
+    rooms can take the front door (``entrances``; None when no front door is wanted)
+    and which have an outer wall (``outer``; None: every room)."""
 
     areas: tuple[float, ...]
     adjacency: tuple[frozenset[int], ...]
     entrances: frozenset[int] | None = None
     ids: tuple[int, ...] | None = None
+    outer: frozenset[int] | None = None
 
     def name(self, i: int) -> str:
         """The room's name in messages (its plan id when known)."""
@@ -64,13 +67,20 @@ class RoomSet:
 
 @dataclass(frozen=True)
 class RuleSpec:
-    """A mandatory rule as the search sees it: its type, minimum area (m²), the types
-    it accepts as neighbour and whether its room takes the front door."""
+    """A mandatory rule as the search sees it: its type, area range (m²), the types
+    it accepts as neighbour and whether its room takes the front door.
+
+    ``needs_window`` asks for a room with an outer wall; ``pinned`` fixes the rule on one
+    room (a corridor or hall carved by ``make_floor``), which needs no neighbour.
+    """
 
     type: str
     min_area: float
     neighbours: frozenset[str]
     outside: bool = False
+    max_area: float = math.inf
+    needs_window: bool = False
+    pinned: int | None = None
 
 
 @dataclass(frozen=True)
@@ -194,9 +204,19 @@ class _Masks:
         self.adj = [sum(1 << j for j in rooms.adjacency[i]) for i in range(n)]
         entrances = (sum(1 << i for i in rooms.entrances) if rooms.entrances is not None
                      else (1 << n) - 1)
+        outer = (sum(1 << i for i in rooms.outer) if rooms.outer is not None
+                 else (1 << n) - 1)
         self.fits = []
-        for rule in rules:
-            mask = sum(1 << i for i in range(n) if rooms.areas[i] >= rule.min_area)
+        self.loose = 0  # rules that need no neighbour (pinned ones)
+        for k, rule in enumerate(rules):
+            if rule.pinned is not None:
+                self.fits.append(1 << rule.pinned)
+                self.loose |= 1 << k
+                continue
+            mask = sum(1 << i for i in range(n)
+                       if rule.min_area <= rooms.areas[i] <= rule.max_area)
+            if rule.needs_window:
+                mask &= outer
             self.fits.append(mask & entrances if rule.outside else mask)
         self.nbr = [sum(1 << j for j, other in enumerate(rules)
                         if j != k and other.type in rule.neighbours)
@@ -216,7 +236,7 @@ class _Search:
     def __init__(self, masks: _Masks, preference: Sequence[Sequence[int]],
                  exempt: int | None, stats: _SearchStats):
         self.m = masks.m
-        self.adj, self.fits, self.nbr = masks.adj, masks.fits, masks.nbr
+        self.adj, self.fits, self.nbr, self.loose = masks.adj, masks.fits, masks.nbr, masks.loose
         self.position = [{room: p for p, room in enumerate(order)} for order in preference]
         self.exempt = exempt
         self.stats = stats
@@ -241,7 +261,7 @@ class _Search:
     def candidates(self, k: int) -> tuple[int, int]:
         """(rooms satisfying rule k now, rooms where its neighbour may still come)."""
         fitting = self.fits[k] & self.free
-        if k == self.exempt:
+        if k == self.exempt or self.loose >> k & 1:
             return fitting, 0
         typed = self._typed_rooms(self.nbr[k])
         potential = self._potential(self.nbr[k])
@@ -255,7 +275,7 @@ class _Search:
 
     def stranded(self) -> int | None:
         """A placed rule that can no longer get a listed neighbour, if any."""
-        for k in _bits(self.placed):
+        for k in _bits(self.placed & ~self.loose):
             if k == self.exempt:
                 continue
             room_adj = self.adj[self.room_of[k]]
@@ -346,13 +366,14 @@ def _exemptions(masks: _Masks, first: int) -> list[int]:
     A rule without any supporting pair can only be satisfied by exemption, so it is the
     only one worth exempting; two such rules make every search futile.
     """
-    support = [masks.support(k) for k in range(masks.m)]
-    hopeless = [k for k, count in enumerate(support) if count == 0]
+    tied = [k for k in range(masks.m) if not masks.loose >> k & 1]
+    support = {k: masks.support(k) for k in tied}
+    hopeless = [k for k in tied if support[k] == 0]
     if len(hopeless) > 1:
         return []
     if hopeless:
         return hopeless
-    return sorted(range(masks.m), key=lambda k: (support[k], k != first, k))
+    return sorted(tied, key=lambda k: (support[k], k != first, k))
 
 
 def place_rules(rooms: RoomSet, rules: Sequence[RuleSpec], *, first: int,

@@ -18,6 +18,8 @@ the room with more rule doors, then the bigger room, then the longer wall.
 
 from __future__ import annotations
 
+import heapq
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -28,9 +30,10 @@ from cga.errors import NoSolutionError
 from cga.model import OUTSIDE, Door, FloorPlan, Room, Wall
 
 from .doors import Interval, free_intervals
-from .rules import RuleTable
+from .rules import RuleTable, TypeRule
 
-__all__ = ["DoorSites", "door_sites", "rule_pairs", "reachability_pairs", "room_graph"]
+__all__ = ["DoorSites", "door_sites", "rule_pairs", "reachability_pairs", "access_pairs",
+           "room_graph"]
 
 Pair = tuple[int, int]
 
@@ -178,3 +181,81 @@ def room_graph(plan: FloorPlan, doors: Sequence[Door]) -> nx.Graph:
         graph.add_edge(*door.rooms, door=door.id, wall=door.wall, reason=door.reason,
                        state=door.state, angle=door.angle)
     return graph
+
+
+def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
+                 entry: int) -> list[Pair]:
+    """The doors of a table with access rules: one door into every room (DESIGN §11).
+
+    Every room is entered once, from the room it is reached from on the cheapest way
+    from ``entry``: a door from ``a`` into ``b`` needs a door-capable wall and ``b``'s rule
+    to allow entering from ``a``'s type; ``a`` must be the entry, circulation, a room its
+    rule lets others pass through, or a private room that ``b`` lists explicitly in
+    ``enteredFrom`` (an en-suite bathroom). Steps out of circulation cost 1, out of other
+    rooms 4, so rooms open onto the hall or corridor whenever they can. The doors form a
+    tree: no room is entered twice, and adjacency alone makes no door.
+
+    Raises
+    ------
+    NoSolutionError
+        Some room cannot be entered from any room the rules allow on a way from the
+        entry; the reasons name it and what it may be entered from.
+
+    Notes
+    -----
+    Dijkstra over the door-capable adjacency, O(E log V).
+    """
+    by_id = {room.id: room for room in rooms}
+    neighbours: dict[int, list[int]] = {room.id: [] for room in rooms}
+    for a, b in sites.inner:
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+
+    def rule(room: int) -> TypeRule | None:
+        type_name = by_id[room].type
+        return table.rule_for(type_name) if type_name else None
+
+    def passable(room: int) -> bool:
+        r = rule(room)
+        return room == entry or by_id[room].circulation or r is None or r.pass_through
+
+    def may_enter(a: int, b: int) -> bool:
+        rb = rule(b)
+        if rb is None:
+            return True
+        if not rb.may_be_entered_from(by_id[a].type or ""):
+            return False
+        return passable(a) or (rb.entered_from is not None and by_id[a].type in rb.entered_from)
+
+    cost = {entry: 0.0}
+    parent: dict[int, int] = {}
+    heap: list[tuple[float, int, int]] = [(0.0, 0, entry)]
+    counter = 1
+    done: set[int] = set()
+    while heap:
+        c, _, a = heapq.heappop(heap)
+        if a in done:
+            continue
+        done.add(a)
+        step = 1.0 if by_id[a].circulation else 4.0
+        for b in sorted(neighbours[a]):
+            if b in done or not may_enter(a, b):
+                continue
+            if c + step < cost.get(b, math.inf):
+                cost[b] = c + step
+                parent[b] = a
+                heapq.heappush(heap, (c + step, counter, b))
+                counter += 1
+    missing = [room.id for room in rooms if room.id not in done]
+    if missing:
+        reasons = []
+        for room in missing:
+            r = rule(room)
+            allowed = ", ".join(r.entered_from or ()) if r and r.entered_from else "its neighbours"
+            beside = ", ".join(f"room {b} ({by_id[b].type})" for b in sorted(neighbours[room]))
+            reasons.append(f"room {room} ({by_id[room].type}) may be entered from {allowed}; "
+                           f"its door-capable neighbours are {beside or 'none'}")
+        raise NoSolutionError(f"the access rules of {table.file} leave room"
+                              f"{'s' if len(missing) > 1 else ''} "
+                              f"{', '.join(map(str, missing))} without a door", reasons)
+    return sorted(tuple(sorted((a, b))) for b, a in parent.items())  # type: ignore[misc]

@@ -7,7 +7,19 @@ A table names one rule per row (docs/room_typing.md, thesis §5.2.1)::
     Livingroom;1;1;Bathroom, Livingroom, Bedroom, Kitchen;true;1;0
 
 The header row is required; its names are matched case-insensitively and give the column
-order. Blank lines (also rows of bare semicolons, as spreadsheets export them) are
+order. Besides the thesis' seven columns, a table may add access columns (DESIGN §11;
+each optional, so the thesis' tables work unchanged):
+
+* ``maxSize``: the largest area (grammar units², empty: no limit);
+* ``enteredFrom``: the types a room of this type may be entered from (comma list).
+  When a table has this column, doors are cut only towards those types: adjacency
+  alone makes no door, and ``Neighbours`` only says where the room is placed;
+* ``passThrough``: whether other rooms may be reached through this one (default true;
+  false for private rooms: bedrooms, bathrooms); a private room is the way into another
+  room only when that room lists its type in ``enteredFrom`` (an en-suite bathroom);
+* ``needsWindow``: the room must have an outer wall (default false);
+* ``circulation``: the type is a hall, corridor or landing (default false): it takes the
+  corridors ``make_floor`` carves and is drawn as circulation. Blank lines (also rows of bare semicolons, as spreadsheets export them) are
 ignored. ``Neighbours`` is a comma list; booleans accept 0/1/true/false in any case;
 numbers may use a decimal comma (``0,25``), as German spreadsheets write them.
 
@@ -20,7 +32,7 @@ from __future__ import annotations
 
 import difflib
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from cga.errors import BudgetError, RuleTableError, excerpt
@@ -28,6 +40,7 @@ from cga.textfiles import MAX_NAME_LENGTH, control_character, read_table_text
 
 __all__ = [
     "COLUMNS",
+    "ACCESS_COLUMNS",
     "DEFAULT_TYPE",
     "MAX_TYPE_RULES",
     "TypeRule",
@@ -40,6 +53,11 @@ COLUMNS: tuple[str, ...] = (
     "Type", "Size", "Prob", "Neighbours", "isOutsideConnected", "appearance", "additionRoom",
 )
 """The columns of a typing table, spelled as in the thesis."""
+
+ACCESS_COLUMNS: tuple[str, ...] = (
+    "maxSize", "enteredFrom", "passThrough", "needsWindow", "circulation",
+)
+"""Optional columns for access rules (DESIGN §11), in the order the docs list them."""
 
 DEFAULT_TYPE = "Commonroom"
 """The type of rooms left over once every rule that could be placed has been placed."""
@@ -70,6 +88,25 @@ class TypeRule:
     appearance: int
     optional: bool
     row: int
+    max_size: float | None = None
+    entered_from: tuple[str, ...] | None = None
+    pass_through: bool = True
+    needs_window: bool = False
+    circulation: bool = False
+
+    def may_be_entered_from(self, other: str) -> bool:
+        """Whether a door may lead into this room from a room of type ``other``:
+        ``enteredFrom`` when the table has it (empty: from anywhere), else the
+        thesis' rule (this rule lists ``other`` as a neighbour)."""
+        if self.entered_from is None:
+            return other in self.neighbours
+        return not self.entered_from or other in self.entered_from
+
+    @property
+    def placement(self) -> tuple[str, ...]:
+        """The types this room must adjoin to be placed: ``enteredFrom`` when given (a
+        room must adjoin what it is entered from), else ``Neighbours``."""
+        return self.entered_from if self.entered_from else self.neighbours
 
 
 @dataclass(frozen=True)
@@ -78,6 +115,8 @@ class RuleTable:
 
     file: str
     rules: tuple[TypeRule, ...]
+    has_access: bool = False
+    """True when the table has an ``enteredFrom`` column: doors follow access rules."""
 
     @property
     def mandatory(self) -> tuple[TypeRule, ...]:
@@ -91,6 +130,15 @@ class RuleTable:
     def outside_rule(self) -> TypeRule | None:
         """The rule whose room gets the front door, if the table has one."""
         return next((r for r in self.rules if r.outside), None)
+
+    @property
+    def circulation_rule(self) -> TypeRule | None:
+        """The type carved corridors and halls get: the front-door rule when it is
+        circulation, else the first circulation rule."""
+        outside = self.outside_rule
+        if outside is not None and outside.circulation:
+            return outside
+        return next((r for r in self.rules if r.circulation), None)
 
     def rule_for(self, type_name: str) -> TypeRule | None:
         """The rule defining ``type_name`` (None for the default type without a rule)."""
@@ -149,7 +197,7 @@ def parse_rule_table(text: str, *, file: str = "<rules>") -> RuleTable:
         raise RuleTableError("the table has a header but no rules", file=file)
     rules = _resolve_neighbours(drafts, file=file)
     _check_table(rules, file=file)
-    return RuleTable(file=file, rules=rules)
+    return RuleTable(file=file, rules=rules, has_access="enteredFrom" in order)
 
 
 def _cells(line: str) -> list[str]:
@@ -158,7 +206,7 @@ def _cells(line: str) -> list[str]:
 
 def _column_order(line: str, *, file: str, row: int) -> list[str]:
     """The canonical column name of each header cell, checking that all are present."""
-    canonical = {name.lower(): name for name in COLUMNS}
+    canonical = {name.lower(): name for name in COLUMNS + ACCESS_COLUMNS}
     names = _cells(line)
     while names and not names[-1]:  # trailing empty cells from spreadsheet exports
         names.pop()
@@ -169,7 +217,8 @@ def _column_order(line: str, *, file: str, row: int) -> list[str]:
             close = difflib.get_close_matches(name.lower(), canonical, n=1, cutoff=0.6)
             hint = f"; did you mean '{canonical[close[0]]}'?" if close else ""
             raise RuleTableError(f"unknown column {excerpt(name)} in the header{hint} The header "
-                                 f"must be '{';'.join(COLUMNS)}'", file=file, row=row,
+                                 f"must be '{';'.join(COLUMNS)}', optionally with "
+                                 f"{', '.join(ACCESS_COLUMNS)}", file=file, row=row,
                                  column=name)
         if known in order:
             raise RuleTableError(f"column '{known}' appears twice in the header",
@@ -184,6 +233,8 @@ def _column_order(line: str, *, file: str, row: int) -> list[str]:
 
 def _parse_row(line: str, order: list[str], *, file: str, row: int) -> TypeRule:
     cells = _cells(line)
+    while len(cells) < len(order) and order[len(cells)] in ACCESS_COLUMNS:
+        cells.append("")  # spreadsheets drop empty trailing cells of optional columns
     if len(cells) < len(order):
         missing = order[len(cells)]
         raise RuleTableError(f"the row has {len(cells)} cells but the header has "
@@ -235,8 +286,40 @@ def _parse_row(line: str, order: list[str], *, file: str, row: int) -> TypeRule:
     if appearance < 1 and not optional:
         raise error("appearance", f"{type_name} is mandatory (additionRoom=0) but "
                                   "appearance is 0; a mandatory type needs at least one room")
+
+    def flag(column: str, default: bool) -> bool:
+        if not value.get(column):
+            return default
+        return _boolean(value[column], error(column, f"unknown boolean {excerpt(value[column])}; "
+                                                     "use 0, 1, true or false"))
+
+    max_size = None
+    if value.get("maxSize"):
+        max_size = _number(value["maxSize"],
+                           error("maxSize", f"bad number {excerpt(value['maxSize'])}"))
+        if max_size < size:
+            raise error("maxSize", f"maxSize {max_size:g} is below Size {size:g}; a room "
+                                   "cannot be both")
+    entered_from = None
+    if "enteredFrom" in order:
+        entered_from = tuple(dict.fromkeys(n.strip() for n in value["enteredFrom"].split(",")
+                                           if n.strip()))
+        for name in entered_from:
+            if len(name) > MAX_NAME_LENGTH:
+                raise error("enteredFrom", f"the type name {excerpt(name)} is longer than "
+                                           f"{MAX_NAME_LENGTH} characters")
+        if not entered_from and not (outside or flag("circulation", False)):
+            raise error("enteredFrom", f"{type_name} lists no type it may be entered from; "
+                                       "list at least one (e.g. Hall, Corridor); only the "
+                                       "front-door room and circulation may leave it empty "
+                                       "(entered from anywhere)")
+
     return TypeRule(type=type_name, size=size, prob=prob, neighbours=neighbours,
-                    outside=outside, appearance=appearance, optional=optional, row=row)
+                    outside=outside, appearance=appearance, optional=optional, row=row,
+                    max_size=max_size, entered_from=entered_from,
+                    pass_through=flag("passThrough", True),
+                    needs_window=flag("needsWindow", False),
+                    circulation=flag("circulation", False))
 
 
 def _number(text: str, error: RuleTableError) -> float:
@@ -281,22 +364,29 @@ def _resolve_neighbours(drafts: list[TypeRule], *, file: str) -> tuple[TypeRule,
     known.setdefault(DEFAULT_TYPE.lower(), DEFAULT_TYPE)
     resolved = []
     for rule in drafts:
-        names = []
-        for name in rule.neighbours:
-            spelled = known.get(name.lower())
-            if spelled is None:
-                close = difflib.get_close_matches(name.lower(), known, n=1, cutoff=0.6)
-                hint = f"; did you mean '{known[close[0]]}'?" if close else ""
-                raise RuleTableError(
-                    f"neighbour type {excerpt(name)} is not defined by any rule{hint} "
-                    f"Known types: {', '.join(sorted(known.values()))}", file=file,
-                    row=rule.row, column="Neighbours")
-            names.append(spelled)
-        resolved.append(TypeRule(type=rule.type, size=rule.size, prob=rule.prob,
-                                 neighbours=tuple(dict.fromkeys(names)), outside=rule.outside,
-                                 appearance=rule.appearance, optional=rule.optional,
-                                 row=rule.row))
+        resolved.append(replace(
+            rule, neighbours=_spelled(rule.neighbours, known, rule, file, "Neighbours"),
+            entered_from=(None if rule.entered_from is None else
+                          _spelled(rule.entered_from, known, rule, file, "enteredFrom"))))
     return tuple(resolved)
+
+
+def _spelled(names: tuple[str, ...], known: dict[str, str], rule: TypeRule, file: str,
+             column: str) -> tuple[str, ...]:
+    """The names as their rules spell them; an unknown name is an error at ``column``."""
+    out = []
+    for name in names:
+        spelled = known.get(name.lower())
+        if spelled is None:
+            close = difflib.get_close_matches(name.lower(), known, n=1, cutoff=0.6)
+            hint = f"; did you mean '{known[close[0]]}'?" if close else ""
+            label = "neighbour" if column == "Neighbours" else "entered-from"
+            raise RuleTableError(
+                f"{label} type {excerpt(name)} is not defined by any rule{hint} "
+                f"Known types: {', '.join(sorted(known.values()))}", file=file,
+                row=rule.row, column=column)
+        out.append(spelled)
+    return tuple(dict.fromkeys(out))
 
 
 def _check_table(rules: tuple[TypeRule, ...], *, file: str) -> None:

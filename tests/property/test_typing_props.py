@@ -94,7 +94,9 @@ def test_typing_promises_hold_on_random_floors(tmp_path):
         except AssertionError as error:
             failures.append((seed, str(error)))
     assert not failures, failures[:5]
-    assert typed_floors >= SEEDS * 0.8 and refused > 0  # both outcomes exercised
+    # both outcomes exercised; the shipped house and office tables enter every room from a
+    # hall, which these corridor-less floors often lack, so they refuse more floors
+    assert typed_floors >= SEEDS * 0.55 and refused > 0
 
 
 FOOTPRINTS = {

@@ -62,12 +62,22 @@ def test_apply_attaches_a_plan_and_keeps_the_shape():
 def test_keyword_options_reach_the_partition():
     ctx, _ = context()
     [child] = MakeFloor().apply(storey(), args(split=3, min_room_width=4.0, min_room_area=20.0,
-                                               cut_range=(0.5, 0.5), window_sill=1.0), ctx)
+                                               cut_range=(0.49, 0.51), window_sill=1.0), ctx)
     plan = child.plan
     assert all(r.area >= 20.0 for r in plan.rooms)
     assert all(min(b[2] - b[0], b[3] - b[1]) >= 4.0 for b in (r.polygon.bounds for r in plan.rooms))
     assert {w.sill for w in plan.windows} == {1.0}
-    assert any(w.start[0] == 7.0 for w in plan.walls if not w.outer)  # first cut at 50 %
+    assert any(abs(w.start[0] - 7.0) <= 0.07 for w in plan.walls if not w.outer)  # first cut
+
+
+def test_cut_range_one_half_is_the_thesis_partition():
+    ctx, reports = context()
+    [child] = MakeFloor().apply(storey(), args(split=4, cut_range=(0.5, 0.5)), ctx)
+    rooms = sorted(r.polygon.bounds for r in child.plan.rooms)
+    # Algorithm 8: z = 5 first, then x = 7 in one half, z = 7.5 in a quarter, x = 7 in the
+    # other half: leaves in the order they were made, each across its maker's axis
+    assert rooms == [(0, 0, 7, 5), (0, 5, 7, 7.5), (0, 7.5, 7, 10), (7, 0, 14, 5), (7, 5, 14, 10)]
+    assert child.plan.layout is None and reports == []  # nothing to re-draw
 
 
 def test_each_floor_its_own_layout_unless_same_layout():

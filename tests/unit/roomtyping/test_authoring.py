@@ -9,16 +9,23 @@ from cga.model import OUTSIDE
 
 
 # -- the example of docs/room_typing.md, verbatim -------------------------------------
-def test_house_rules_on_a_five_room_floor():
-    plan = floor_from_rectangles([(0, 0, 6, 5), (6, 0, 10, 5), (10, 0, 14, 5),
-                                  (0, 5, 7, 10), (7, 5, 14, 10)])
+HALL_FLOOR = [(0, 4, 14, 5.6),  # the hall, wall to wall
+              (0, 0, 6, 4), (6, 0, 8.2, 4), (8.2, 0, 11.4, 4), (11.4, 0, 14, 4),
+              (0, 5.6, 4, 10), (4, 5.6, 8, 10), (8, 5.6, 11, 10), (11, 5.6, 14, 10)]
+
+
+def test_house_rules_on_a_floor_with_a_hall():
+    plan = floor_from_rectangles(HALL_FLOOR, circulation=[0])
     for seed in range(25):
         typed = type_floor(plan, "house_types.csv", seed=seed)
+        (hall,) = rooms_of_type(typed, "Hall")
+        assert hall.circulation
         (living,) = rooms_of_type(typed, "Livingroom")
-        assert living.area >= 14
-        assert are_adjacent(typed, "Kitchen", "Livingroom")
-        assert doors_between(typed, "Kitchen", "Livingroom")
-        assert doors_between(typed, "Livingroom", "outside")  # the front door
+        assert living.area >= 16
+        assert doors_between(typed, "Hall", "outside")  # the front door opens into the hall
+        for bedroom in rooms_of_type(typed, "Bedroom"):
+            assert doors_between(typed, bedroom.id, "Hall")  # bedrooms open onto the hall
+            assert len(doors_between(typed, bedroom.id, "Livingroom")) == 0
 # -------------------------------------------------------------------------------------
 
 
@@ -32,8 +39,7 @@ def test_floor_settings_and_index():
 
 
 def test_type_floor_is_reproducible_by_seed(tmp_path):
-    plan = floor_from_rectangles([(0, 0, 6, 5), (6, 0, 10, 5), (10, 0, 14, 5),
-                                  (0, 5, 7, 10), (7, 5, 14, 10)])
+    plan = floor_from_rectangles(HALL_FLOOR, circulation=[0])
     first = type_floor(plan, "house_types.csv", seed=7)
     again = type_floor(plan, "house_types.csv", seed=7)
     assert [r.type for r in first.rooms] == [r.type for r in again.rooms]
@@ -44,7 +50,7 @@ def test_type_floor_is_reproducible_by_seed(tmp_path):
 
 def test_helpers_accept_ids_types_and_outside():
     plan = floor_from_rectangles([(0, 0, 6, 10), (6, 0, 14, 5), (6, 5, 14, 10)])
-    typed = type_floor(plan, "house_types.csv", seed=0, door_position="center")
+    typed = type_floor(plan, "thesis_types.csv", seed=0, door_position="center")
     assert are_adjacent(typed, 0, 1) and are_adjacent(typed, 1, 2)
     assert are_adjacent(typed, 0, "outside") and are_adjacent(typed, OUTSIDE, 2)
     assert not are_adjacent(typed, "Nosuchroom", 0)

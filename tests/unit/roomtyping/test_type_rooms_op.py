@@ -62,8 +62,12 @@ def test_types_the_plan_and_returns_one_child_with_it(tmp_path):
 
 
 def test_shipped_table_is_found_by_name(tmp_path):
-    (child,) = TypeRooms().apply(floor_shape(), args("office_types.csv"), context(tmp_path))
-    assert {r.type for r in child.plan.rooms} >= {"Reception"}
+    corridor = plan_from_rectangles([(0, 0, 6, 4), (6, 0, 14, 4), (0, 4, 14, 6), (0, 6, 2.2, 10),
+                                     (2.2, 6, 8, 10), (8, 6, 14, 10)], circulation=[2])
+    (child,) = TypeRooms().apply(floor_shape(corridor), args("office_types.csv"), context(tmp_path))
+    assert child.plan.room(2).type == "Corridor" and child.plan.room(2).circulation
+    assert {r.type for r in child.plan.rooms} >= {"Office", "Meetingroom", "Bathroom"}
+    assert child.plan.front_door().swing_room == 2
 
 
 def test_size_is_in_grammar_units_squared(tmp_path):
