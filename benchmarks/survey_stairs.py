@@ -33,8 +33,8 @@ from shapely.ops import unary_union
 
 from cga.building import stack_storeys
 from cga.evaluator import Evaluator
-from cga.operations import OperationRegistry
-from cga.operations.base import Child, Operation, OperationContext, Param
+from cga.registry import OperationRegistry
+from cga.operation import Child, Operation, OperationContext, Param
 from cga.meshing.solids import floor_nodes
 from cga.parser import parse, read_grammar
 from cga.pipeline import build

@@ -366,6 +366,13 @@ class StairCore:
         """Floor landing, flight, and the top landing (straight) or half landing (U)."""
         return 2 * self.landing_depth + self.run
 
+    @property
+    def interior(self) -> Polygon:
+        """The core inside its walls: the stair's rectangle, and beside it the lobby a
+        core stretched across a narrow bay keeps (``polygon`` shrunk by the walls)."""
+        wall = Point(self.origin).distance(self.polygon.exterior)
+        return self.polygon.buffer(-wall, join_style="mitre")
+
     def at(self, u: float, v: float) -> Point2:
         """The plan point at core coordinates ``(u, v)``."""
         return (self.origin[0] + u * self.u[0] + v * self.v[0],

@@ -106,8 +106,7 @@ def rail_footprint(stair: Stair, plan: FloorPlan) -> Polygon | None:
     core = plan.core
     if core is None:
         return None
-    inside = core.rect(0.0, core.interior_length, 0.0, core.interior_width)
-    edge = stair.polygon.boundary.difference(inside.exterior.buffer(1e-6))
+    edge = stair.polygon.boundary.difference(core.interior.exterior.buffer(1e-6))
     if edge.is_empty or edge.length < 1e-6:
         return None
     arrival = stair.flights[-1].polygon().buffer(1e-6)

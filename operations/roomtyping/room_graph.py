@@ -220,6 +220,8 @@ def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
         return room == entry or by_id[room].circulation or r is None or r.pass_through
 
     def may_enter(a: int, b: int) -> bool:
+        if by_id[b].circulation and not passable(a):
+            return False  # a hall or stair landing entered through a bedroom makes it a passage
         rb = rule(b)
         if rb is None:
             return True

@@ -16,6 +16,7 @@ likewise puts "a stair on every floor but the last".
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -23,11 +24,12 @@ from typing import Any, Literal
 
 import numpy as np
 import shapely
-from shapely.geometry import Point, Polygon
+from shapely.geometry import LineString, MultiPolygon, Point, Polygon
 from shapely.geometry.polygon import orient
+from shapely.ops import unary_union
 
 from cga.errors import DerivationError
-from cga.model import StairCore
+from cga.model import Point2, StairCore
 from cga.randomness import stream
 
 __all__ = ["STAIR_KINDS", "StairParams", "design_risers", "going_for", "place_core",
@@ -143,9 +145,10 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
     length = _up(core.interior_length + 2 * wall)
     breadth = _up(core.interior_width + 2 * wall)
     centre = footprint.centroid
-    ring = list(orient(footprint, sign=1.0).exterior.coords)[:-1]
-    options: list[tuple[bool, float, StairCore]] = []
-    for a, b in zip(ring, ring[1:] + ring[:1]):
+    free = _free_region(footprint, corridors)
+    boundary = footprint.exterior
+    options: list[tuple[bool, bool, bool, float, StairCore]] = []
+    for a, b in _edges_to_stand_on(footprint, corridors):
         edge = math.dist(a, b)
         d = np.subtract(b, a) / edge if edge > 0 else np.zeros(2)
         if edge < length - 1e-9 or min(abs(d[0]), abs(d[1])) > 1e-9:
@@ -153,27 +156,32 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
         n = np.array([-d[1], d[0]])  # the inside lies to the left of a CCW edge
         for s in _positions(edge, length, min_width):
             corner = np.asarray(a) + d * s
-            rect = Polygon([corner, corner + d * length, corner + d * length + n * breadth,
-                            corner + n * breadth])
-            if not _fits(footprint, rect, min_width) or any(
-                    rect.intersection(c).area > 1e-9 for c in corridors):
-                continue
-            for flip in (False, True):
-                u = -d if flip else d
-                origin = corner + d * (length - wall if flip else wall) + n * wall
-                option = StairCore(polygon=orient(rect, sign=1.0),
-                                   origin=(float(origin[0]), float(origin[1])),
-                                   u=(float(u[0]), float(u[1])), v=(float(n[0]), float(n[1])),
-                                   kind=params.kind, width=params.width, well=params.well,
-                                   landing_depth=depth, risers=risers, rise=rise,
-                                   going=going, storeys=storeys)
-                side = Point(option.at(depth / 2, core.interior_width + 2 * wall))
-                if not footprint.contains(side):
-                    continue  # the landing's long side is an outer wall: no door there
-                landing = Point(option.at(depth / 2, core.interior_width / 2))
-                strip = _landing_strip(option, depth, wall)
-                onto = any(strip.intersection(c.boundary).length >= door_width for c in corridors)
-                options.append((not onto, landing.distance(centre), option))
+            for deep, hugs in _breadths(free, corner, d, n, length, breadth, min_width,
+                                        core.interior_width + 2 * wall):
+                rect = Polygon([corner, corner + d * length, corner + d * length + n * deep,
+                                corner + n * deep])
+                if any(rect.intersection(c).area > 1e-9 for c in corridors) or not _fits(
+                        footprint, free, rect, min_width):
+                    continue
+                for flip, hug in itertools.product((False, True), hugs):
+                    u = -d if flip else d
+                    origin = corner + d * (length - wall if flip else wall) + n * (hug + wall)
+                    option = StairCore(polygon=orient(rect, sign=1.0),
+                                       origin=(float(origin[0]), float(origin[1])),
+                                       u=(float(u[0]), float(u[1])), v=(float(n[0]), float(n[1])),
+                                       kind=params.kind, width=params.width, well=params.well,
+                                       landing_depth=depth, risers=risers, rise=rise,
+                                       going=going, storeys=storeys)
+                    side = Point(option.at(depth / 2, core.interior_width + 2 * wall))
+                    if not footprint.contains(side):
+                        continue  # the landing's long side is an outer wall: no door there
+                    landing = Point(option.at(depth / 2, core.interior_width / 2))
+                    strip = _landing_strip(option, depth, wall)
+                    onto = any(strip.intersection(c.boundary).length >= door_width
+                               for c in corridors)
+                    walled = rect.intersection(boundary).length > 1e-6
+                    options.append((not onto, deep > breadth, not walled,
+                                    landing.distance(centre), option))
     if not options:
         minx, minz, maxx, maxz = footprint.bounds
         raise DerivationError(
@@ -181,8 +189,8 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
             f"{maxx - minx:.4g} m x {maxz - minz:.4g} m footprint with rooms at least "
             f"{min_width:g} m wide around it",
             hint="give the building a larger lot, a narrower stair (stair_width), or stair = \"none\"")
-    options.sort(key=lambda o: o[:2])
-    return options[int(rng.integers(min(3, len(options))))][2]
+    options.sort(key=lambda o: o[:4])
+    return options[int(rng.integers(min(3, len(options))))][4]
 
 
 def _landing_strip(core: StairCore, depth: float, wall: float) -> Polygon:
@@ -204,16 +212,74 @@ def _positions(edge: float, length: float, min_width: float) -> list[float]:
     return sorted(out)
 
 
-def _fits(footprint: Polygon, rect: Polygon, min_width: float) -> bool:
-    """The core lies inside and leaves one polygon without parts narrower than ``min_width``."""
+def _breadths(free: Polygon | MultiPolygon, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
+              length: float, breadth: float, min_width: float,
+              stair_breadth: float) -> list[tuple[float, tuple[float, ...]]]:
+    """``(breadth, offsets)`` to try for a core standing at ``corner`` along ``d``.
+
+    The core is its stair's breadth deep, or, where the free region beyond would be a
+    strip narrower than a room (a corridor's bay of offices 4 m deep and a 2.5 m
+    core), as deep as the bay: the rest of the bay becomes a lobby of the stair hall
+    instead of a sliver. A stretched core's stair stands against either long side
+    (``offsets`` from the edge), so its landing can face the corridor on either side.
+    """
+    reach = _reach(free, corner, d, n, length, breadth + min_width)
+    if breadth + 1e-6 < reach < breadth + min_width - 1e-6:
+        return [(breadth, (0.0,)), (reach, (0.0, reach - stair_breadth))]
+    return [(breadth, (0.0,))]
+
+
+def _reach(free: Polygon | MultiPolygon, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
+           length: float, limit: float) -> float:
+    """How far the free region runs from the edge along ``n`` (at most ``limit``), the
+    least over the core's two ends and middle."""
+    edges = free.boundary
+    reach = limit
+    for t in (0.01, 0.5, 0.99):
+        start = corner + d * (t * length) + n * 1e-4
+        hits = LineString([start, start + n * limit]).intersection(edges)
+        for point in getattr(hits, "geoms", [hits]):
+            if not point.is_empty:
+                reach = min(reach, float(np.dot(np.asarray(point.coords[0]) - corner, n)))
+    return reach
+
+
+def _edges_to_stand_on(footprint: Polygon, corridors: Sequence[Polygon]) -> list[tuple[Point2, Point2]]:
+    """Edges a core may stand along, each with the free side on its left: the
+    footprint's edges (counter-clockwise) and the corridors' edges (clockwise, so the
+    left is outside the corridor)."""
+    rings = [list(orient(footprint, sign=1.0).exterior.coords)[:-1]]
+    rings += [list(orient(c, sign=-1.0).exterior.coords)[:-1] for c in corridors]
+    return [(a, b) for ring in rings for a, b in zip(ring, ring[1:] + ring[:1])]
+
+
+def _free_region(footprint: Polygon, corridors: Sequence[Polygon]) -> Polygon | MultiPolygon:
+    """The footprint less its corridors: what the BSP and the core share."""
+    return shapely.set_precision(footprint.difference(unary_union(list(corridors))), 1e-6) \
+        if corridors else footprint
+
+
+def _fits(footprint: Polygon, free: Polygon | MultiPolygon, rect: Polygon, min_width: float) -> bool:
+    """The core lies inside, cuts the free region into no more parts than it had, and
+    leaves no part of it narrower than ``min_width`` that was not already."""
     if not footprint.buffer(1e-7).covers(rect):
         return False
-    rest = shapely.set_precision(footprint.difference(rect), 1e-6)
-    if not isinstance(rest, Polygon) or rest.interiors or rest.is_empty:
+    rest = shapely.set_precision(free.difference(rect), 1e-6)
+    if rest.is_empty or _parts(rest) > _parts(free):
         return False
+    return _narrow_area(rest, min_width) - _narrow_area(free, min_width) < 1e-3
+
+
+def _parts(region: shapely.Geometry) -> int:
+    return len(getattr(region, "geoms", [region]))
+
+
+def _narrow_area(region: shapely.Geometry, min_width: float) -> float:
+    """Area of ``region`` that a disc of diameter ``min_width`` cannot sweep (a
+    morphological opening)."""
     r = min_width / 2 - 1e-3
-    opened = rest.buffer(-r, join_style="mitre").buffer(r, join_style="mitre")
-    return rest.area - opened.area < 1e-3
+    opened = region.buffer(-r, join_style="mitre").buffer(r, join_style="mitre")
+    return region.area - opened.area
 
 
 def core_for_storey(cache: dict[str, Any], seed: int, footprint: Polygon, storey_height: float,
