@@ -131,9 +131,9 @@ def main() -> None:
         failed = {}
         for seed in range(args.full):
             scene = build(path, seed=seed, formats=(), quiet=True)
-            checks = {k: v["passed"] for k, v in scene.checks.items()}
-            if not all(checks.values()):
-                failed[seed] = [scene.checks[k]["summary"] for k, ok in checks.items() if not ok]
+            failing = [report for report in scene.checks.values() if not report.passed]
+            if failing:
+                failed[seed] = [report.summary() for report in failing]
         if args.full:
             print(f"  full builds: {args.full - len(failed)}/{args.full} pass physics and "
                   f"navigability (front door → stairs → every room, r = 0.25 m)")

@@ -226,12 +226,14 @@ def test_a_blocked_top_landing_cuts_off_the_upper_floor_and_says_where(tmp_path)
 
 
 STRAIGHT = """
-Lot: rectangle(16, 11)
+Lot: rectangle(16, 10)
 Rules:
 Lot --> extrude({height}) Body
 Body --> repeated_split("Y", 3){{Ground, Upper}}
-Ground --> make_floor(5, 0.2, 2>1.2>1.2, 0.9, 2.1, stair = "straight") Floor
-Upper --> make_floor(4, 0.2, 2>1.2>1.2, 0.9, 2.1, stair = "straight") Floor
+Ground --> make_floor(7, 0.2, 2>1.2>1.2, 0.9, 2.1, stair = "straight", corridor = "spine",
+                      corridor_width = 1.6, min_room_width = 2, min_room_area = 4) Floor
+Upper --> make_floor(7, 0.2, 2>1.2>1.2, 0.9, 2.1, stair = "straight", corridor = "spine",
+                     corridor_width = 1.6, min_room_width = 2, min_room_area = 4) Floor
 Floor --> case floor == 0 : type_rooms("house_types.csv") Typed
         | else : type_rooms("house_upper_types.csv") Typed
 """
