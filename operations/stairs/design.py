@@ -6,9 +6,10 @@ stair, so both flights match) of ``rise = H / n``; the going follows Blondel's s
 runs two flights side by side with a well between them; a straight stair one flight.
 
 The core is the rectangle that holds the floor landing, the flight(s) and the half (or
-top) landing, plus the walls around it. It stands against the footprint's boundary, so
-the rest of the storey stays one simple polygon for the BSP, and its landing end faces
-the inside of the building. The place is chosen once per building from the build seed
+top) landing, plus the walls around it. It stands along the footprint's boundary or
+along a corridor, with its landing opening onto the corridor where it can, so the stair
+is reached from circulation (DESIGN §11, §12); in a bay too shallow to leave a room
+beside it, it fills the bay. The place is chosen once per building from the build seed
 and the footprint (:func:`core_for_storey`), so every storey of the stack reserves the
 same rectangle before it is partitioned; the MSU seed (procedural-interiors-msu.txt)
 likewise puts "a stair on every floor but the last".
@@ -125,13 +126,17 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
 
     Notes
     -----
-    Candidates lie along every axis-aligned edge long enough for the core: flush with
-    either end or at least ``min_width`` from it, every 0.5 m, the landing at either end.
-    A candidate is kept when the core lies inside the footprint, the rest is one polygon
-    without parts narrower than ``min_width``, and the landing's long side faces the
-    inside (it takes the door). Of those, the ones whose landing touches a corridor
-    come first, then those whose landing is nearest the footprint's centre (short
-    walks); the pick among the best three is drawn from ``rng``. O(edges × positions)
+    Candidates lie along every axis-aligned edge of the footprint and of the corridors
+    (on the side away from the corridor) that is long enough for the core: flush with
+    either end or at least ``min_width`` from it, every 0.5 m, the landing at either
+    end; a core whose far side would leave a strip narrower than ``min_width`` is also
+    tried stretched across it (:func:`_breadths`). A candidate is kept when the core
+    lies inside the footprint and off the corridors, splits the free floor into no more
+    parts, leaves no new part narrower than ``min_width``, and the landing's long side
+    faces the inside (it takes the door). Ranked: the landing touches a corridor over a
+    door width, the core is not stretched, it stands against an outer wall, its landing
+    is nearest the footprint's centre; the pick among the best three is drawn from
+    ``rng``. O(edges × positions)
     shapely tests.
     """
     params.check()

@@ -87,3 +87,22 @@ def test_a_room_that_may_only_be_entered_from_an_absent_type_has_no_typing(tmp_p
     plan = floor_from_rectangles(FLOOR, circulation=[0])
     with pytest.raises(NoSolutionError):
         type_floor(plan, write(tmp_path, text), seed=0)
+
+
+def test_circulation_is_never_entered_through_a_private_room():
+    """A stair landing reached only through a bedroom would make the bedroom the way
+    upstairs: the access doors refuse it and name the landing."""
+    from shapely.geometry import box
+
+    from cga.model import Room
+    from cga.operations.roomtyping.room_graph import DoorSites, access_pairs
+
+    rules = table(EN_SUITE)
+    rooms = [Room(0, box(0, 0, 10, 1.6), box(0, 0, 10, 1.6), "Hall", circulation=True),
+             Room(1, box(0, 1.6, 5, 5), box(0, 1.6, 5, 5), "Bedroom", private=True),
+             Room(2, box(0, 5, 3, 8), box(0, 5, 3, 8), "Stair", circulation=True)]
+    behind_the_bedroom = DoorSites(inner={(0, 1): (), (1, 2): ()}, outer={})
+    with pytest.raises(NoSolutionError, match="room 2"):
+        access_pairs(rooms, behind_the_bedroom, rules, entry=0)
+    beside_the_hall = DoorSites(inner={(0, 1): (), (1, 2): (), (0, 2): ()}, outer={})
+    assert access_pairs(rooms, beside_the_hall, rules, entry=0) == [(0, 1), (0, 2)]

@@ -85,3 +85,35 @@ def test_every_storey_of_a_building_gets_the_same_core():
     fresh = core_for_storey({}, 7, L_SHAPE, 3.0, 3, StairParams(), wall=0.2, door_width=0.9,
                             min_width=2.4)
     assert fresh == first  # the place depends on the seed and footprint, not on who asks first
+
+
+def _landing_opening(core, corridor: Polygon) -> float:
+    """Length of the corridor's side the landing (grown to its wall centre lines) lies on."""
+    landing = core.rect(-0.2, core.landing_depth, -0.2, core.interior_width + 0.2)
+    return landing.buffer(1e-6).intersection(corridor.exterior).length
+
+
+def test_with_a_corridor_the_landing_opens_onto_it():
+    # the house demo: a 1.6 m spine corridor 4.2 m from the south wall of a 14 m x 10 m house
+    footprint, corridor = box(0, 0, 14, 10), box(0, 4.2, 14, 5.8)
+    for seed in range(8):
+        core = place_core(footprint, 3.0, 2, StairParams(), wall=0.2, door_width=0.9,
+                          min_width=2.0, rng=np.random.default_rng(seed), corridors=[corridor])
+        assert core.polygon.intersection(corridor).area < 1e-9
+        assert _landing_opening(core, corridor) >= 0.9 + 0.2  # a door and its margins
+
+
+def test_a_core_in_a_bay_too_shallow_for_a_room_beside_it_fills_the_bay():
+    # the office demo: a 22 m x 10 m floor, a 1.8 m spine corridor; bays 4.1 m deep, and a
+    # 2.5 m deep core would leave a 1.6 m strip where a 2 m room is needed
+    footprint, corridor = box(0, 0, 22, 10), box(0, 4.1, 22, 5.9)
+    for seed in range(8):
+        core = place_core(footprint, 3.3, 2, StairParams(), wall=0.15, door_width=1.0,
+                          min_width=2.0, rng=np.random.default_rng(seed), corridors=[corridor])
+        x0, z0, x1, z1 = core.polygon.bounds
+        assert z1 - z0 == pytest.approx(4.1) or x1 - x0 == pytest.approx(4.1)
+        assert _landing_opening(core, corridor) >= 1.0 + 0.2
+        # the stair still lies inside the core's walls, and the lobby is inside the core
+        inside = core.rect(0, core.interior_length, 0, core.interior_width)
+        assert core.interior.buffer(1e-6).covers(inside)
+        assert core.interior.area > inside.area + 1.0
