@@ -26,6 +26,7 @@ SEEDS = 12  # per demo in CI; scripts/plan_quality.py runs hundreds
 DEMOS = {
     "house": ("house_types.csv", "house_upper_types.csv"),
     "apartment": ("house_types.csv", "house_types.csv"),
+    "apartment_block": ("house_types.csv", "house_upper_types.csv"),
     "office": ("office_types.csv", "office_types.csv"),
     "office_corridor": ("office_types.csv", "office_types.csv"),
     "office_wings": ("office_types.csv", "office_types.csv"),

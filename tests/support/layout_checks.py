@@ -5,6 +5,8 @@ the typing code or :mod:`cga.quality`), and reports what an architect would obje
 private rooms that are the only way into another room (unless that room lists the
 private type in ``enteredFrom``: en-suite), offices and meeting rooms without a door
 onto circulation, a front door not into circulation, rooms whose type no rule defines.
+The one type no table defines is ``Stair``, the stair core ``make_floor`` reserves on
+every storey of a stack (DESIGN §12): it is circulation.
 """
 
 from __future__ import annotations
@@ -15,6 +17,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from cga.model import OUTSIDE
+
+STAIR = "Stair"
 
 __all__ = ["Table", "read_table", "floor_problems"]
 
@@ -62,7 +66,7 @@ def floor_problems(plan, table: Table) -> list[str]:
             edges[a].add(b)
             edges[b].add(a)
     for r in plan.rooms:
-        if r.type not in table.types:
+        if r.type not in table.types | {STAIR}:
             problems.append(f"room {r.id} has type {r.type}, which no rule defines")
     entry = plan.entry if getattr(plan, "entry", None) is not None else plan.room_graph.graph["entry"]
     if plan.index == 0 and table.circulation:
@@ -80,6 +84,6 @@ def floor_problems(plan, table: Table) -> list[str]:
                 problems.append(f"{p.type} {p.id} is the only way into {types[other]} {other}")
     for r in plan.rooms:
         if r.type in ("Office", "Meetingroom") and not any(
-                types[n] in table.circulation for n in edges[r.id]):
+                types[n] in table.circulation | {STAIR} for n in edges[r.id]):
             problems.append(f"{r.type} {r.id} does not open onto circulation")
     return problems
