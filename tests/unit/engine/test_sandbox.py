@@ -233,7 +233,7 @@ def test_every_path_a_grammar_writes_resolves_inside_or_is_refused(tmp_path_fact
     (project / "link").symlink_to(root / "outside" / "secret.csv")
     (project / "shared").symlink_to(root / "outside", target_is_directory=True)
     allowed = [os.path.realpath(project), os.path.realpath(shipped_dir("cga.rules")),
-               os.path.realpath(shipped_dir("cga.models"))]
+               os.path.realpath(shipped_dir("cga.furniture_models"))]
     try:
         found = resolve_resource(written, "rules", base_dir=project,
                                  sandbox=Sandbox.for_grammar(project))
