@@ -45,7 +45,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
 
-__all__ = ["SIDE_GAP", "BOTTOM_GAP", "TOP_GAP", "DoorLeaf", "door_leaf", "leaf_mesh",
+__all__ = ["SIDE_GAP", "BOTTOM_GAP", "TOP_GAP", "DoorLeaf", "door_leaf",
            "leaf_model_matrix", "rotation_about_y", "slab_range"]
 
 SIDE_GAP = 0.005
@@ -192,20 +192,6 @@ def leaf_model_matrix(leaf: DoorLeaf, bounds: np.ndarray, slab_z: tuple[float, f
                      centre[1] - extents[1] / 2 - y0 * matrix[1, 1],
                      -side * slab_z[0])
     return matrix
-
-
-def leaf_mesh(mesh: "trimesh.Trimesh", matrix: np.ndarray) -> "trimesh.Trimesh":
-    """``mesh`` moved by ``matrix``, its triangles turned over when the matrix mirrors
-    (a leaf hinged at the model's +x side), colours kept."""
-    import trimesh
-
-    faces = np.asarray(mesh.faces)
-    if np.linalg.det(matrix[:3, :3]) < 0:
-        faces = faces[:, ::-1]
-    return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
-                           faces=faces.copy(),
-                           visual=mesh.visual.copy() if mesh.visual is not None else None,
-                           process=False)
 
 
 def slab_range(parts: Sequence["trimesh.Trimesh"]) -> tuple[float, float]:

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 import trimesh
 
-from cga.doors import door_leaf, leaf_mesh, leaf_model_matrix, slab_range
+from cga.doors import door_leaf, leaf_model_matrix, slab_range
 from cga.model import FloorPlan, FurnitureItem
 from cga.operations.furniture.library import FurnitureModel
 from cga.scene import ItemInfo, SceneNode
@@ -60,3 +60,15 @@ def _translation(offset: Sequence[float] | np.ndarray) -> np.ndarray:
     matrix = np.eye(4)
     matrix[:3, 3] = offset
     return matrix
+
+
+def leaf_mesh(mesh: trimesh.Trimesh, matrix: np.ndarray) -> trimesh.Trimesh:
+    """``mesh`` moved by ``matrix``, its triangles turned over when the matrix mirrors
+    (a leaf hinged at the model's +x side), colours kept."""
+    faces = np.asarray(mesh.faces)
+    if np.linalg.det(matrix[:3, :3]) < 0:
+        faces = faces[:, ::-1]
+    return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
+                           faces=faces.copy(),
+                           visual=mesh.visual.copy() if mesh.visual is not None else None,
+                           process=False)

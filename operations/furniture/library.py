@@ -41,6 +41,7 @@ __all__ = [
     "DEFAULT_DENSITY",
     "FurnitureModel",
     "ModelFileError",
+    "MAX_MODEL_PARTS",
     "MAX_MODEL_VERTICES",
     "ModelLibrary",
     "default_library",
@@ -62,9 +63,13 @@ DEFAULT_COLOR = (0.7, 0.7, 0.7)
 _CONVEX_TOLERANCE = 1e-3
 """A part is convex when its volume is within this fraction of its convex hull's."""
 
-MAX_MODEL_VERTICES = 100_000
+MAX_MODEL_VERTICES = 50_000
 """Most vertices a furniture model file may have (faces: twice as many). The shipped
 models have a few hundred; physics and every export handle each item's mesh."""
+
+MAX_MODEL_PARTS = 500
+"""Most parts (OBJ groups and objects) a model may have: each is a convex piece that
+physics simulates; the shipped models have a few dozen at most."""
 
 _PARSE_ERRORS = (ValueError, IndexError, KeyError, TypeError, AttributeError,
                  AssertionError, OverflowError, ZeroDivisionError)
@@ -73,6 +78,7 @@ word where a number belongs, ...)."""
 
 _VERTEX_LINE = re.compile(r"^[ \t]*v[ \t]", re.MULTILINE)
 _FACE_LINE = re.compile(r"^[ \t]*f[ \t]", re.MULTILINE)
+_PART_LINE = re.compile(r"^[ \t]*[go][ \t]", re.MULTILINE)
 _SEPARATORS = re.compile(r"[\s_\-]+")
 _TRAILING_NUMBER = re.compile(r"\d+$")
 _HEADER = re.compile(r"^#\s*(density|color)\b(.*)$", re.IGNORECASE)
@@ -324,7 +330,7 @@ def _read_obj_text(path: Path) -> str:
     ------
     ModelFileError
         The file cannot be read, is not UTF-8 text (naming the byte), or has too many
-        vertices or faces.
+        vertices, faces or parts.
     """
     try:
         data = path.read_bytes()
@@ -343,6 +349,10 @@ def _read_obj_text(path: Path) -> str:
         raise ModelFileError(path, f"{vertices:,} vertices and {faces:,} faces; a furniture "
                                    f"model may have at most {MAX_MODEL_VERTICES:,} vertices "
                                    f"and {2 * MAX_MODEL_VERTICES:,} faces (docs/limits.md)")
+    parts = len(_PART_LINE.findall(text))
+    if parts > MAX_MODEL_PARTS:
+        raise ModelFileError(path, f"{parts:,} groups or objects; a furniture model may have "
+                                   f"at most {MAX_MODEL_PARTS:,} parts (docs/limits.md)")
     return text
 
 

@@ -11,16 +11,13 @@ door with its margins, and rooms between corridor and shell are at least
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from cga.errors import DerivationError
-from cga.operation import OperationContext
-from cga.operations.make_floor import MakeFloor
-from cga.shape import Mass, Shape
 
 from dcel_checks import narrowest_room_violation, validate_plan
+from floor_runs import run_make_floor
 from footprint_strategies import winged_footprints
 
 EXAMPLES_PER_KIND = 130  # 4 kinds: 520 storeys
@@ -40,16 +37,10 @@ def test_corridor_properties(kind, data):
     split = data.draw(st.integers(0, 10), label="split")
     seed = data.draw(st.integers(0, 2**32 - 1), label="seed")
 
-    mass = Mass(footprint, 0.0, 3.0)
-    shape = Shape("Floor", ("Lot", "Floor"), mass.scope(), mass, {"floor": 0})
-    reports = []
-    ctx = OperationContext(rng=np.random.default_rng(seed), units=1.0, resolve=lambda p, k="rules": p,
-                           report=reports.append, span=None, successor_count=1, seed=seed)
-    args = {p.name: p.default for p in MakeFloor.params if not p.required}
-    args |= {"split": split, "wallWidth": WALL, "windows": (2, 1.2, 1.2), "doorWidth": DOOR,
-             "doorHeight": 2.1, "corridor": mode, "corridor_width": width}
     try:
-        [child] = MakeFloor().apply(shape, args, ctx)
+        child, reports = run_make_floor(
+            footprint, floor=0, seed=seed, split=split, wallWidth=WALL, windows=(2, 1.2, 1.2),
+            doorWidth=DOOR, doorHeight=2.1, corridor=mode, corridor_width=width)
     except DerivationError as error:
         assert "cannot carve" in str(error)
         return

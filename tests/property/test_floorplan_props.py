@@ -14,17 +14,14 @@ from __future__ import annotations
 import itertools
 import math
 
-import numpy as np
 import pytest
 import shapely
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from cga.operation import OperationContext
 from cga.meshing.solids import floor_nodes
-from cga.operations.make_floor import MakeFloor
-from cga.shape import Mass, Shape
 
 from dcel_checks import narrowest_room_violation, validate_plan
+from floor_runs import run_make_floor
 from footprint_strategies import footprints
 
 MIN_WIDTH, MIN_AREA = 2.4, 6.0
@@ -43,16 +40,10 @@ def test_make_floor_properties(kind, data):
     seed = data.draw(st.integers(0, 2**32 - 1), label="seed")
     with_solids = next(_EXAMPLES) % 10 == 0
 
-    mass = Mass(footprint, 3.0, 3.0)
-    shape = Shape("Floor", ("Lot", "Floor"), mass.scope(), mass, {"floor": 1})
-    reports = []
-    ctx = OperationContext(rng=np.random.default_rng(seed), units=1.0, resolve=lambda p, k="rules": p,
-                           report=reports.append, span=None, successor_count=1, seed=seed)
-    args = {p.name: p.default for p in MakeFloor.params if not p.required}
-    args |= {"split": split, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
-             "doorHeight": 2.1, "min_room_width": MIN_WIDTH, "min_room_area": MIN_AREA,
-             "cut_range": (0.35, 0.65), "same_layout": False, "window_sill": 0.9}
-    [child] = MakeFloor().apply(shape, args, ctx)
+    child, reports = run_make_floor(
+        footprint, floor=1, seed=seed, split=split, wallWidth=0.2, windows=(2, 1.2, 1.2),
+        doorWidth=0.9, doorHeight=2.1, min_room_width=MIN_WIDTH, min_room_area=MIN_AREA,
+        cut_range=(0.35, 0.65), same_layout=False, window_sill=0.9)
     plan = child.plan
 
     validate_plan(plan)

@@ -298,3 +298,13 @@ def test_check_reads_the_tables(project, table, content, message):
 def test_check_loads_the_models(project, content, message):
     (project / "sofa.obj").write_bytes(content)
     refused(*cli("check", project / "house.grammar"), "sofa.obj")
+
+
+@pytest.mark.parametrize("lines, message", [
+    (["v 0 0 0"] * 50_001 + ["f 1 2 3"], "50,000 vertices"),
+    ([f"g part{i}\nv {i} 0 0\nv {i} 1 0\nv {i} 0 1\nf {3 * i + 1} {3 * i + 2} {3 * i + 3}"
+      for i in range(501)], "500 parts"),
+])
+def test_models_over_their_budget_are_refused_before_parsing(project, lines, message):
+    (project / "sofa.obj").write_text("\n".join(lines))
+    refused(*cli("check", project / "house.grammar"), "sofa.obj", message)

@@ -6,6 +6,8 @@ import sys
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from cga.cli import main
 from cga.errors import ResourceAccessError, ResourceNotFoundError, UsageError
@@ -204,3 +206,40 @@ def test_grammar_symlink_loop_is_a_clear_error(tmp_path, capsys):
         assert main([command, str(loop)]) == 2
         err = capsys.readouterr().err
         assert "not found" in err and "Traceback" not in err
+
+
+# -- property: whatever a grammar writes, what is read lies inside the allowed folders --
+
+_PARTS = st.sampled_from(["..", ".", "project", "outside", "tables", "types.csv",
+                          "secret.csv", "link", "shared", "etc", "passwd", "", "D:", "x"])
+
+
+@st.composite
+def _written_paths(draw):
+    parts = draw(st.lists(_PARTS, min_size=1, max_size=7))
+    separator = draw(st.sampled_from(["/", "\\", "\\\\"]))
+    return draw(st.sampled_from(["", "/", "C:" + separator])) + separator.join(parts)
+
+
+@settings(max_examples=300, deadline=None)
+@given(written=_written_paths())
+def test_every_path_a_grammar_writes_resolves_inside_or_is_refused(tmp_path_factory, written):
+    root = tmp_path_factory.mktemp("prop")
+    project = root / "project"
+    (project / "tables").mkdir(parents=True)
+    (project / "tables" / "types.csv").write_text("inside\n")
+    (root / "outside").mkdir()
+    (root / "outside" / "secret.csv").write_text("outside\n")
+    (project / "link").symlink_to(root / "outside" / "secret.csv")
+    (project / "shared").symlink_to(root / "outside", target_is_directory=True)
+    allowed = [os.path.realpath(project), os.path.realpath(shipped_dir("cga.rules")),
+               os.path.realpath(shipped_dir("cga.furniture_models"))]
+    try:
+        found = resolve_resource(written, "rules", base_dir=project,
+                                 sandbox=Sandbox.for_grammar(project))
+    except (ResourceAccessError, ResourceNotFoundError):
+        return
+    real = os.path.realpath(found)
+    assert any(real == folder or real.startswith(folder + os.sep) for folder in allowed), \
+        f"{written!r} read {real}"
+    assert os.path.isfile(real)

@@ -112,3 +112,20 @@ def test_more_attempts_never_place_fewer_items(thesis, room_plan):
         one, _ = furnish_plan(plan, rules, models, np.random.default_rng(seed), attempts=1)
         many, _ = furnish_plan(plan, rules, models, np.random.default_rng(seed), attempts=20)
         assert len(many) >= len(one)
+
+
+def test_an_overfull_table_leaves_the_surplus_out_before_solving(room_plan, library, rules_dir):
+    """Hundreds of rows for one small room: the items past twice the free floor are left
+    out unsolved (so a table's cost grows linearly), the rest are solved as usual."""
+    rows = "".join(f"Livingroom;plant{i};true\n" for i in range(400))
+    rules = parse_furniture_rules("Room;Name;isInCorner\n" + rows)
+    models = models_for(rules, library)
+    plan = room_plan(3.0, 3.0)
+    furniture, diagnostics = furnish_plan(plan, rules, models, np.random.default_rng(0))
+    interior = plan.room(0).interior.area
+    plant = models["plant0"][1]
+    crowded = [d for d in diagnostics if "times the room's free floor" in d.message]
+    solved = 400 - len(crowded)
+    assert solved * plant[0] * plant[2] <= 2 * interior + plant[0] * plant[2]
+    assert len(crowded) >= 400 - 2 * interior / (plant[0] * plant[2]) - 1
+    assert len(furniture) + len(diagnostics) == 400 + sum(1 for i in furniture if i.is_detail)
