@@ -145,7 +145,10 @@ def _blank_wall_target(doc, floor):
     items = unary_union([box(f["bbox"]["min"][0], f["bbox"]["min"][2], f["bbox"]["max"][0],
                              f["bbox"]["max"][2]) for f in doc["furniture"]
                          if f["floor"] == floor and not f["non_collision"]
-                         and (not f["is_detail"] or f["door"] is not None)])
+                         and (not f["is_detail"] or f["door"] is not None)]
+                        # the stairs' flights and the stairwells are not free floor either
+                        + [Polygon(s["polygon"]["exterior"]) for s in doc.get("stairs", [])
+                           if floor in s["floors"]])
     for room in (r for r in doc["rooms"] if r["floor"] == floor):
         interior = Polygon(room["interior"]["exterior"])
         for wall in (w for w in doc["walls"] if w["floor"] == floor and room["id"] in w["rooms"]):
