@@ -10,6 +10,8 @@ meet a listed neighbour), which are stated first because they are the real cause
 
 from __future__ import annotations
 
+import math
+
 from collections.abc import Sequence
 
 from .backtrack import Failure, RoomSet, RuleSpec
@@ -88,6 +90,25 @@ def _stranded(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec, failure
             f"needs ({_area(smallest.min_area)})")
 
 
+def _unfit_beside(rooms: RoomSet, rule: RuleSpec, next_to: list[int], beside: str) -> str:
+    """Why none of the free rooms ``next_to`` the rule's neighbours takes it, when they
+    are big enough: the first of its other limits (area cap, window, front door) that
+    every one of them misses."""
+    smallest = min(rooms.areas[i] for i in next_to)
+    if smallest > rule.max_area:
+        return (f"{rule.type} may have at most {_area(rule.max_area)}; the smallest free room "
+                f"next to {beside} has {_area(smallest)}")
+    if rule.needs_window and rooms.outer is not None and not any(i in rooms.outer for i in next_to):
+        return f"{rule.type} needs a window, but the free rooms next to {beside} have no outer wall"
+    if rule.outside and rooms.entrances is not None:
+        return (f"{rule.type} gets the front door, but the free rooms next to "
+                f"{beside} have no outer wall long enough for a door")
+    size = (f"≥ {_area(rule.min_area)}" if math.isinf(rule.max_area)
+            else f"{_area(rule.min_area)}–{_area(rule.max_area)}")
+    return (f"{rule.type} ({size}) fits none of the free rooms next to {beside} once the "
+            "other rules are placed")
+
+
 def _no_room(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec,
              type_at: dict[int, str]) -> str:
     free = [i for i in range(len(rooms)) if i not in type_at]
@@ -113,8 +134,7 @@ def _no_room(rooms: RoomSet, rules: Sequence[RuleSpec], rule: RuleSpec,
         if largest < rule.min_area:
             return (f"{rule.type} needs ≥ {_area(rule.min_area)}; the largest free room next "
                     f"to {_a(_either(present))} has {_area(largest)}")
-        return (f"{rule.type} gets the front door, but the free rooms next to "
-                f"{_a(_either(present))} have no outer wall long enough for a door")
+        return _unfit_beside(rooms, rule, next_to, _a(_either(present)))
     wanted = _either(_listed(rule, rules))
     around = sorted({type_at[j] for i in fitting for j in rooms.adjacency[i] if j in type_at})
     if around:

@@ -100,6 +100,26 @@ def test_explanations_match_the_documented_wording():
         "a Livingroom neighbour; free rooms adjoin only Bathroom, Bedroom")
 
 
+def test_an_area_cap_or_a_window_is_named_not_the_front_door():
+    """A bathroom capped at 9 m² beside a hall whose free neighbours are all larger was
+    once explained as a front-door problem."""
+    hall = RuleSpec("Hall", 3, frozenset({"Bathroom"}), outside=True, pinned=0)
+    capped = RuleSpec("Bathroom", 4, frozenset({"Hall"}), max_area=9.0)
+    rooms = RoomSet(areas=(20.0, 11.3, 12.0), adjacency=(frozenset({1, 2}), frozenset({0}),
+                                                        frozenset({0})),
+                    entrances=frozenset({0}), ids=(1, 2, 3), outer=frozenset({1, 2}))
+    failure = Failure(rooms=(0, -1), kind="no-room", rules=(1,))
+    assert explain_failure(rooms, [hall, capped], failure) == (
+        "with Hall in room 1: Bathroom may have at most 9.0 m²; the smallest free room next "
+        "to a Hall has 11.3 m²")
+    windowed = RuleSpec("Bedroom", 9, frozenset({"Hall"}), needs_window=True)
+    inner = RoomSet(areas=rooms.areas, adjacency=rooms.adjacency, entrances=rooms.entrances,
+                    ids=rooms.ids, outer=frozenset({0}))
+    assert explain_failure(inner, [hall, windowed], failure) == (
+        "with Hall in room 1: Bedroom needs a window, but the free rooms next to a Hall "
+        "have no outer wall")
+
+
 # -- completeness: the search finds a placement whenever brute force does -------------
 
 def random_instance(rng, n, m):
