@@ -1,4 +1,4 @@
-"""The ``cga`` command line: ``cga build``, ``cga check`` and ``cga batch``.
+"""The ``cga`` command line: ``cga build``, ``cga check``, ``cga batch`` and ``cga render``.
 
 Every user error is a :class:`~cga.errors.CGAError`: its message (file:line:column, the
 line and a caret for grammar errors) goes to stderr and the exit status is 2, with no
@@ -53,7 +53,7 @@ def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--robot-radius", type=float, default=0.25, metavar="R",
                         help="robot radius in metres for the navigability check (default 0.25)")
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
-                        help="extra outputs, comma separated: obj,urdf,sdf,map,view")
+                        help="extra outputs, comma separated: obj,urdf,sdf,mjcf,usd,map,view,render")
     parser.add_argument("--max-depth", type=int, default=64, metavar="N",
                         help="derivation depth limit (default 64)")
     output = parser.add_mutually_exclusive_group()
@@ -141,7 +141,7 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
                         help="skip the physics and navigability checks")
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
                         help="extra outputs per seed besides glb and scene JSON, comma "
-                             "separated: plan,obj,urdf,sdf,map,view")
+                             "separated: plan,obj,urdf,sdf,mjcf,usd,map,view,render")
     output = parser.add_mutually_exclusive_group()
     output.add_argument("--quiet", action="store_true", help="print nothing but errors")
     output.add_argument("--json", action="store_true",
@@ -192,12 +192,75 @@ def _run_batch(args: argparse.Namespace) -> int:
     return 2
 
 
+def _add_render_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("scene", metavar="FILE",
+                        help="a build's <name>.scene.json (its <name>.glb must be beside it)")
+    parser.add_argument("--out", metavar="DIR",
+                        help="folder to write <name>.render/ into (default: the scene's folder)")
+    parser.add_argument("--width", type=int, default=640, metavar="W",
+                        help="image width in pixels (default 640)")
+    parser.add_argument("--height", type=int, default=480, metavar="H",
+                        help="image height in pixels (default 480)")
+    parser.add_argument("--fov", type=float, default=90.0, metavar="DEGREES",
+                        help="horizontal field of view (default 90)")
+    parser.add_argument("--eye-height", type=float, default=1.0, metavar="M",
+                        help="camera height above the walking surface in metres (default 1.0)")
+    parser.add_argument("--views-per-room", type=int, default=1, metavar="N",
+                        help="camera views per room (default 1)")
+    parser.add_argument("--robot-radius", type=float, default=0.25, metavar="R",
+                        help="cameras stand at least this far from obstacles, in metres, "
+                             "where a robot of this radius can drive (default 0.25)")
+    output = parser.add_mutually_exclusive_group()
+    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    output.add_argument("--json", action="store_true",
+                        help="print what was written (JSON) on stdout")
+
+
+def _run_render(args: argparse.Namespace) -> int:
+    import json
+    import time
+    from pathlib import Path
+
+    from .errors import UsageError
+    from .export import check_formats
+    from .fsutil import atomic_output_dir
+
+    check_formats(["render"])
+    from .render.files import render_folder, write_render
+    from .render.inputs import inputs_from_files
+    from .render.placement import RenderOptions
+
+    try:
+        options = RenderOptions(width=args.width, height=args.height, fov=args.fov,
+                                eye_height=args.eye_height, views_per_room=args.views_per_room,
+                                robot_radius=args.robot_radius)
+    except ValueError as error:
+        raise UsageError(f"cga render: {error}") from None
+    scene = Path(args.scene)
+    inputs = inputs_from_files(scene)
+    out_dir = Path(args.out) if args.out else scene.parent
+    started = time.perf_counter()
+    with atomic_output_dir(out_dir, protect=[scene]) as staging:
+        written = write_render(inputs, options, staging, inputs.name)
+    seconds = time.perf_counter() - started
+    folder = out_dir / render_folder(inputs.name)
+    views = sum(1 for p in written if p.name.endswith(".camera.json"))
+    if args.json:
+        print(json.dumps({"folder": str(folder), "views": views, "files": len(written),
+                          "seconds": round(seconds, 3)}, indent=2))
+    elif not args.quiet:
+        print(f"{views} views ({len(written)} files) in {folder}, {seconds:.2f} s")
+    return 0
+
+
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None],
                           Callable[[argparse.Namespace], int]]] = {
     "build": ("derive, check and export a building", _add_build_arguments, _run_build),
     "check": ("check a grammar without building it", _add_check_arguments, _run_check),
     "batch": ("build many seeds into one folder each, with a manifest (resumable)",
               _add_batch_arguments, _run_batch),
+    "render": ("render camera views, depth, semantic and instance masks of a build",
+               _add_render_arguments, _run_render),
 }
 """Subcommand name → (help, add_arguments, run)."""
 
