@@ -29,7 +29,7 @@ import socket
 import time
 import traceback
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -76,6 +76,8 @@ class BatchRecord:
     """Layout quality over the floors (:mod:`cga.quality`): worst circulation share,
     most doors of a room, counts of private rooms passed through, rooms reached only
     through private rooms, areas out of range and rule-less rooms."""
+    views: int = 0
+    """Camera views rendered (``--export render``: room views and top-down views)."""
 
     def to_json(self) -> str:
         return json.dumps(self.__dict__, sort_keys=True)
@@ -151,6 +153,7 @@ class BatchReport:
             "mean_seconds": round(self.mean_seconds, 4),
             "p95_seconds": round(self.p95_seconds, 4),
             "houses_per_second": round(self.houses_per_second, 3),
+            "views": sum(r.views for r in self.built),
         }
 
 
@@ -268,6 +271,9 @@ def _build_one(grammar: str, seed: int, out_dir: str, build_options: dict[str, A
         shutil.rmtree(staging, ignore_errors=True)
         raise
     record = _summarise(scene, time.perf_counter() - start, seed)
+    views = sum(1 for _ in staging.glob("*.render/*.camera.json"))
+    if views:
+        record = replace(record, views=views)
     staging.mkdir(parents=True, exist_ok=True)  # a build that writes no files
     _publish(out, seed, staging)
     return record
