@@ -10,9 +10,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-from cga.render.files import write_render
-from cga.render.inputs import inputs_from_scene
-from cga.render.placement import RenderOptions
 from cga.scene import Scene, SceneNode
 
 __all__ = ["export_render"]
@@ -20,4 +17,7 @@ __all__ = ["export_render"]
 
 def export_render(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: str) -> list[Path]:
     """Write ``<out_dir>/<name>.render/`` (views, maps, ``index.json``)."""
+    # imported here: the renderer uses cga.export's JSON and number helpers
+    from cga.render import RenderOptions, inputs_from_scene, write_render
+
     return write_render(inputs_from_scene(scene, list(nodes)), RenderOptions(), Path(out_dir), name)
