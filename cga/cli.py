@@ -34,6 +34,13 @@ def _add_allow_path(parser: argparse.ArgumentParser) -> None:
                              "(repeatable; anything else is refused)")
 
 
+def _add_output(parser: argparse.ArgumentParser, json_help: str) -> None:
+    """``--quiet`` or ``--json`` (one of them)."""
+    output = parser.add_mutually_exclusive_group()
+    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    output.add_argument("--json", action="store_true", help=json_help)
+
+
 def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
     _add_allow_path(parser)
@@ -56,10 +63,7 @@ def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
                         help="extra outputs, comma separated: obj,urdf,sdf,mjcf,usd,map,view,render")
     parser.add_argument("--max-depth", type=int, default=64, metavar="N",
                         help="derivation depth limit (default 64)")
-    output = parser.add_mutually_exclusive_group()
-    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
-    output.add_argument("--json", action="store_true",
-                        help="print a machine-readable summary (JSON) on stdout")
+    _add_output(parser, "print a machine-readable summary (JSON) on stdout")
 
 
 def _run_build(args: argparse.Namespace) -> int:
@@ -142,10 +146,7 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
                         help="extra outputs per seed besides glb and scene JSON, comma "
                              "separated: plan,obj,urdf,sdf,mjcf,usd,map,view,render")
-    output = parser.add_mutually_exclusive_group()
-    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
-    output.add_argument("--json", action="store_true",
-                        help="print the batch report (JSON) on stdout")
+    _add_output(parser, "print the batch report (JSON) on stdout")
 
 
 def _run_batch(args: argparse.Namespace) -> int:
@@ -210,10 +211,7 @@ def _add_render_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--robot-radius", type=float, default=0.25, metavar="R",
                         help="cameras stand at least this far from obstacles, in metres, "
                              "where a robot of this radius can drive (default 0.25)")
-    output = parser.add_mutually_exclusive_group()
-    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
-    output.add_argument("--json", action="store_true",
-                        help="print what was written (JSON) on stdout")
+    _add_output(parser, "print what was written (JSON) on stdout")
 
 
 def _run_render(args: argparse.Namespace) -> int:

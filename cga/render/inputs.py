@@ -140,6 +140,7 @@ def inputs_from_files(scene_json: Path) -> RenderInputs:
 
 def _glb_meshes(path: Path) -> dict[str, trimesh.Trimesh]:
     """Every mesh node of a glb in world coordinates, by node name (its path)."""
+    loaded: Any
     try:
         loaded = trimesh.load(path, force="scene")
     except Exception as error:  # trimesh raises many types for a damaged file

@@ -134,7 +134,8 @@ def top_camera(floor: FloorOutline, grid: OccupancyGrid, oversample: int, name: 
 def cell_centres(grid: OccupancyGrid) -> tuple[np.ndarray, np.ndarray]:
     """World ``(x, z)`` of every cell centre, ``float[rows, cols]`` each."""
     rows, cols = grid.shape
-    xs, zs = grid.cell_to_world(np.arange(rows)[:, None], np.arange(cols)[None, :])
+    xs = grid.x_min + (np.arange(cols)[None, :] + 0.5) * grid.resolution
+    zs = grid.z_min + (np.arange(rows)[:, None] + 0.5) * grid.resolution
     return np.broadcast_to(xs, grid.shape), np.broadcast_to(zs, grid.shape)
 
 
