@@ -26,13 +26,21 @@ from scipy import ndimage
 
 from cga.checks.occupancy import OccupancyGrid, occupancy_grid
 from cga.export.rosmap import RESOLUTION
+from cga.pipeline import MAX_ROBOT_RADIUS
 from cga.randomness import stream
 
 from .cameras import Camera, look_level, orthographic_down, perspective
 from .inputs import FloorOutline, RenderInputs
 
-__all__ = ["RenderOptions", "floor_grid", "reachable_cells", "room_cameras", "top_camera",
+__all__ = ["MAX_PIXELS", "MAX_VIEWS_PER_ROOM", "RenderOptions", "floor_grid", "reachable_cells", "room_cameras", "top_camera",
            "cell_centres", "room_map"]
+
+
+MAX_PIXELS = 16_000_000
+"""Most pixels of one view (docs/limits.md)."""
+
+MAX_VIEWS_PER_ROOM = 100
+"""Most camera views per room (docs/limits.md)."""
 
 
 @dataclass(frozen=True)
@@ -56,17 +64,19 @@ class RenderOptions:
     top_oversample: int = 2
 
     def __post_init__(self) -> None:
-        if self.width < 1 or self.height < 1 or self.width * self.height > 16_000_000:
+        if self.width < 1 or self.height < 1 or self.width * self.height > MAX_PIXELS:
             raise ValueError(f"image size {self.width}x{self.height} must be positive and "
-                             f"at most 16 million pixels")
+                             f"at most {MAX_PIXELS:,} pixels")
         if not 1.0 <= self.fov <= 179.0:
             raise ValueError(f"field of view {self.fov} must be between 1 and 179 degrees")
         if not self.eye_height > 0:
             raise ValueError(f"eye height {self.eye_height} must be positive")
-        if self.views_per_room < 0:
-            raise ValueError(f"views per room {self.views_per_room} must not be negative")
-        if not self.robot_radius > 0:
-            raise ValueError(f"robot radius {self.robot_radius} must be positive")
+        if not 0 <= self.views_per_room <= MAX_VIEWS_PER_ROOM:
+            raise ValueError(f"views per room {self.views_per_room} must be between 0 and "
+                             f"{MAX_VIEWS_PER_ROOM}")
+        if not 0 < self.robot_radius <= MAX_ROBOT_RADIUS:
+            raise ValueError(f"robot radius {self.robot_radius} must be more than 0 and at "
+                             f"most {MAX_ROBOT_RADIUS} m")
         if not self.map_resolution > 0 or self.top_oversample < 1:
             raise ValueError("map resolution must be positive and the oversampling at least 1")
 
