@@ -21,7 +21,6 @@ JSON and the glb store both ids with every node and furniture item.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
@@ -36,9 +35,6 @@ __all__ = ["SemanticClass", "UNLABELLED", "class_table", "class_id", "class_name
 
 UNLABELLED = 0
 """The id of "nothing": no surface, no room."""
-
-_SEPARATORS = re.compile(r"[\s_\-]+")
-
 
 @dataclass(frozen=True)
 class SemanticClass:
@@ -81,14 +77,12 @@ def class_id(name: str, group: str = "structure") -> int:
     return _by_name()[(group, name)]
 
 
-def _canonical(name: str) -> str:
-    return _SEPARATORS.sub("", name).lower()
-
-
 def furniture_class(model: str) -> int:
     """The class of a furniture model (by canonical name): ``door`` and ``window`` for
     those models, the model's own class when the table lists it, else ``furniture``."""
-    key = _canonical(model)
+    from cga.operations.furniture.library import normalize_name
+
+    key = normalize_name(model)
     table = _by_name()
     if key in ("door", "window"):
         return table[("structure", key)]
@@ -118,7 +112,9 @@ def room_type_class(room_type: str | None) -> int:
     table = _by_name()
     if room_type is None:
         return table[("room_type", "room")]
-    return table.get(("room_type", _canonical(room_type)), table[("room_type", "room")])
+    from cga.operations.furniture.library import normalize_name
+
+    return table.get(("room_type", normalize_name(room_type)), table[("room_type", "room")])
 
 
 def instance_ids(nodes: Sequence["SceneNode"]) -> dict[str, int]:

@@ -11,9 +11,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import shapely
 from PIL import Image
-from shapely.geometry import Polygon
+from shapely.geometry import Point, Polygon
 
 from cga.batch import run_batch, seed_folder
 from cga.cli import main
@@ -52,6 +51,24 @@ def test_every_room_has_a_view_and_every_floor_a_top_down_view(house):
     rooms = {(r["floor"], r["id"]) for r in doc["rooms"]}
     assert {(v["floor"], v["room"]) for v in _views(index, "perspective")} == rooms
     assert sorted(v["floor"] for v in _views(index, "orthographic")) == [0, 1]
+
+
+def test_cameras_stand_in_their_room_at_eye_height_clear_of_furniture(house):
+    out, doc, index = house
+    floors = {f["index"]: f for f in doc["floors"]}
+    for view in _views(index, "perspective"):
+        camera = json.loads((out / "house.render" / view["files"]["camera"]).read_text())
+        x, y, z = np.array(camera["opencv"]["camera_to_world"])[:3, 3]
+        assert y == pytest.approx(floors[view["floor"]]["floor_y"] + 1.0)
+        room = next(r for r in doc["rooms"]
+                    if r["floor"] == view["floor"] and r["id"] == view["room"])
+        interior = Polygon(room["interior"]["exterior"], room["interior"]["holes"])
+        assert interior.contains(Point(x, z)), view["name"]
+        for item in doc["furniture"]:
+            solid = not (item["is_detail"] or item["non_collision"])
+            lo, hi = item["bbox"]["min"], item["bbox"]["max"]
+            if item["floor"] == view["floor"] and solid and lo[1] < y:
+                assert not (lo[0] < x < hi[0] and lo[2] < z < hi[2]), (view["name"], item["name"])
 
 
 def test_every_mask_id_is_in_the_class_table_or_the_scene_json(house):
