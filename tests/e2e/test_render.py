@@ -23,6 +23,8 @@ from render_checks import (floor_pixel_areas, furniture_shadows, load_view,  # n
                            pixel_points, wall_surface_distance)
 from ros_map_checks import RosMap  # noqa: E402
 
+pytest.importorskip("embreex", reason="needs the render extra: pip install 'cga[render]'")
+
 HOUSE = Path(__file__).resolve().parents[2] / "demos" / "house.grammar"
 FORMATS = ["glb", "json", "map", "render"]
 

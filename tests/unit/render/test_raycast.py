@@ -10,10 +10,12 @@ import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from cga.render.cameras import look_level, orthographic_down, perspective
-from cga.render.raycast import RayScene, Surface
-from cga.render.views import ViewRenderer
-from cga.semantics import class_id
+pytest.importorskip("embreex", reason="needs the render extra: pip install 'cga[render]'")
+
+from cga.render.cameras import look_level, orthographic_down, perspective  # noqa: E402
+from cga.render.raycast import RayScene, Surface  # noqa: E402
+from cga.render.views import ViewRenderer  # noqa: E402
+from cga.semantics import class_id  # noqa: E402
 
 
 def _surface(mesh, kind="wall", cls="wall", instance=1):
