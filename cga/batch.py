@@ -33,6 +33,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .difficulty.metrics import mean_metrics
 from .errors import CGAError, ExportError, UsageError
 from .quality import quality_report
 
@@ -78,6 +79,8 @@ class BatchRecord:
     through private rooms, areas out of range and rule-less rooms."""
     views: int = 0
     """Camera views rendered (``--export render``: room views and top-down views)."""
+    difficulty: dict[str, Any] = field(default_factory=dict)
+    """The building's measured difficulty (:meth:`cga.difficulty.DifficultyReport.totals`)."""
 
     def to_json(self) -> str:
         return json.dumps(self.__dict__, sort_keys=True)
@@ -154,6 +157,7 @@ class BatchReport:
             "p95_seconds": round(self.p95_seconds, 4),
             "houses_per_second": round(self.houses_per_second, 3),
             "views": sum(r.views for r in self.built),
+            "difficulty_means": mean_metrics(r.difficulty for r in self.built if r.difficulty),
         }
 
 
@@ -210,6 +214,7 @@ def _summarise(scene: Scene, seconds: float, seed: int) -> BatchRecord:
         items_left_out=left_out,
         checks=checks,
         quality=_quality_totals(quality_report(list(scene.floors))),
+        difficulty=scene.difficulty.totals() if scene.difficulty is not None else {},
     )
 
 

@@ -3,7 +3,7 @@
 
 ``parse → derive → Scene → scene nodes (meshes) → checks → exporters``. Every stage is
 timed into ``scene.timings`` (``parse``, ``derive`` and, inside it, each operation by
-name, ``meshing``, ``physics``, ``navigability``, ``export``). Checks run only for
+name, ``meshing``, ``physics``, ``navigability``, ``difficulty``, ``export``). Checks run only for
 scenes with floors and are imported only then, as are the exporters, so a massing build
 never loads pybullet. All files of a build are staged and moved into the output folder
 only when every exporter has succeeded (:func:`cga.fsutil.atomic_output_dir`).
@@ -28,7 +28,7 @@ from .scene import Scene
 __all__ = ["MAX_ROBOT_RADIUS", "STAGES", "build", "check_grammar", "default_out_dir", "run_checks",
            "export_scene"]
 
-STAGES = ("parse", "derive", "meshing", "physics", "navigability", "export")
+STAGES = ("parse", "derive", "meshing", "physics", "navigability", "difficulty", "export")
 """Pipeline stages as they appear in ``Scene.timings`` (operation timings are the other keys)."""
 
 
@@ -110,12 +110,17 @@ def check_grammar(grammar_path: str | Path, *, seed: int = 0, units: float | Non
 
 def run_checks(scene: Scene, *, robot_radius: float = 0.25) -> None:
     """Run the physics and navigability checks on ``scene.nodes`` into ``scene.checks``
-    (floors only).
+    (floors only), then measure ``scene.difficulty`` from their grids.
 
     Each entry is the check's report (a :class:`~cga.report.CheckReport`); their times
     go to ``scene.timings``.
     """
-    _run_checks(scene, robot_radius, _Progress(scene.timings, quiet=True))
+    from .difficulty import measure_scene
+
+    progress = _Progress(scene.timings, quiet=True)
+    _run_checks(scene, robot_radius, progress)
+    with progress.stage("difficulty", "measuring difficulty…"):
+        scene.difficulty = measure_scene(scene)
 
 
 def _run_checks(scene: Scene, robot_radius: float, progress: _Progress) -> None:
@@ -229,6 +234,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         the allowed folders, bad option, strict failure); source errors carry the
         grammar text for their excerpt.
     """
+    from .difficulty import measure_scene
     from .operations.furniture.library import grammar_library
     from .parser import parse, read_grammar
     from .sandbox import Sandbox
@@ -265,6 +271,8 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                 scene.nodes  # noqa: B018 - made once here, timed; checks and exporters reuse them
             if physics:
                 _run_checks(scene, robot_radius, progress)
+            with progress.stage("difficulty", "measuring difficulty…"):
+                scene.difficulty = measure_scene(scene)
             failed = [c for c in scene.checks.values() if not c.passed]
             if strict and failed:
                 raise NoSolutionError("strict mode: the build does not pass its checks",

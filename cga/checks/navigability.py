@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -47,6 +47,7 @@ from cga.scene import Scene, SceneNode
 from .occupancy import OccupancyGrid, occupancy_grid
 
 __all__ = [
+    "DriveSpace",
     "FloorReach",
     "NavigabilityReport",
     "Bottleneck",
@@ -123,6 +124,26 @@ class RoomReach:
 
 
 @dataclass(frozen=True)
+class DriveSpace:
+    """The grids one floor's check computed, kept for the difficulty metrics
+    (:mod:`cga.difficulty`) so they measure the same space instead of rasterising again.
+
+    ``clearance`` is the distance (m) from each cell centre to the nearest obstacle with
+    every door open; ``reached`` the cells the robot's centre reaches from ``start``
+    (a cell, or None when the robot has no room to start); ``room_masks`` each room's
+    free floor (shrunk by one cell, so doorway cells belong to no room); ``furniture``
+    the cells the furniture (not the door leaves) occupies.
+    """
+
+    grid: OccupancyGrid
+    clearance: np.ndarray
+    reached: np.ndarray
+    start: tuple[int, int] | None
+    room_masks: dict[int, np.ndarray]
+    furniture: np.ndarray
+
+
+@dataclass(frozen=True)
 class FloorReach:
     """One floor's result. ``start`` is ``"front_door"`` (the robot starts outside door
     ``start_door``), ``"entry_room"`` (inside ``start_room``, the room typing made the
@@ -139,6 +160,8 @@ class FloorReach:
     rooms: tuple[RoomReach, ...]
     elapsed_seconds: float
     closed_doors: tuple[int, ...] = ()
+    space: DriveSpace | None = field(default=None, repr=False, compare=False)
+    """The grids behind the result (not in :meth:`to_dict`)."""
 
     @property
     def passed(self) -> bool:
@@ -346,7 +369,9 @@ class _FloorCheck:
                           start_room=start_room,
                           start_door=self.front.id if self.front else None, note=note,
                           rooms=tuple(rooms), elapsed_seconds=time.perf_counter() - started,
-                          closed_doors=tuple(d.id for d in self.plan.doors if not d.passable))
+                          closed_doors=tuple(d.id for d in self.plan.doors if not d.passable),
+                          space=DriveSpace(self.grid, self.clear, reached, cell, self.masks,
+                                           self.grid.occupied_by(o.path for o in self.furniture)))
 
     # -- the start ---------------------------------------------------------------------
 

@@ -122,6 +122,8 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "checks": _clean({name: {**report.to_dict(), "summary": report.summary()}
                           for name, report in scene.checks.items()}, "checks"),
         "timings": _clean(dict(scene.timings), "timings"),
+        "difficulty": _clean(scene.difficulty.to_dict(), "difficulty")
+        if scene.difficulty is not None else None,
     }
     return _clean(document, "")
 
