@@ -41,9 +41,24 @@ def _add_output(parser: argparse.ArgumentParser, json_help: str) -> None:
     output.add_argument("--json", action="store_true", help=json_help)
 
 
+def _add_set(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        dest="overrides",
+                        help="replace a variable of the grammar's Variables: section, e.g. "
+                             "--set difficulty=7 (repeatable; the value must be of the "
+                             "variable's kind)")
+
+
+def _overrides(args: argparse.Namespace) -> dict[str, str]:
+    from .overrides import parse_assignments
+
+    return parse_assignments(args.overrides)
+
+
 def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
     _add_allow_path(parser)
+    _add_set(parser)
     parser.add_argument("--seed", type=int, default=0, metavar="N",
                         help="random seed; the same seed gives byte-identical files (default 0)")
     parser.add_argument("--lot", metavar="LOT",
@@ -78,7 +93,7 @@ def _run_build(args: argparse.Namespace) -> int:
                   out_dir=out_dir, formats=formats, physics=not args.no_physics,
                   robot_radius=args.robot_radius, strict=args.strict,
                   quiet=args.quiet or args.json, max_depth=args.max_depth,
-                  allow_paths=args.allow_paths)
+                  allow_paths=args.allow_paths, overrides=_overrides(args))
     if args.json:
         import json
 
@@ -133,6 +148,11 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-n", "--count", type=_whole_number, required=True, metavar="N",
                         help="number of seeds to build (1000 or 1e6)")
     _add_allow_path(parser)
+    _add_set(parser)
+    parser.add_argument("--sweep", metavar="NAME=LO:HI[:STEP]",
+                        help="build the seeds once per value of a grammar variable, e.g. "
+                             "--sweep difficulty=0:10, into <out>/NAME=VALUE/; the report "
+                             "gives each value's mean difficulty metrics (sweep.json)")
     parser.add_argument("--seed-start", type=_whole_number, default=0, metavar="S",
                         help="first seed (default 0)")
     parser.add_argument("--jobs", type=int, default=1, metavar="J",
@@ -158,9 +178,12 @@ def _run_batch(args: argparse.Namespace) -> int:
 
     out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.grammar).stem}-batch"
     options = {"physics": not args.no_physics, "allow_paths": args.allow_paths,
-               "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export]))}
+               "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export])),
+               "overrides": _overrides(args)}
     kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
                   time_limit=args.time_limit, build_options=options)
+    if args.sweep:
+        return _run_sweep(args, out_dir, kwargs)
     if args.quiet or args.json:
         report = run_batch(args.grammar, **kwargs)
     else:
@@ -249,6 +272,54 @@ def _run_render(args: argparse.Namespace) -> int:
     elif not args.quiet:
         print(f"{views} views ({len(written)} files) in {folder}, {seconds:.2f} s")
     return 0
+
+
+def _run_sweep(args: argparse.Namespace, out_dir: "Path", kwargs: dict) -> int:
+    """``cga batch --sweep``: one batch per value, then a table of metric means."""
+    import json
+
+    from .overrides import parse_sweep
+    from .sweep import SWEEP_REPORT, run_sweep, value_text
+
+    name, values = parse_sweep(args.sweep)
+    if args.quiet or args.json:
+        report = run_sweep(args.grammar, name=name, values=values, **kwargs)
+    else:
+        from rich.console import Console
+
+        console = Console(stderr=True)
+        report = run_sweep(args.grammar, name=name, values=values, **kwargs,
+                           on_value=lambda v: console.print(
+                               f"{name} = {value_text(v)}: building {args.count} seeds…",
+                               highlight=False))
+    data = report.to_dict()
+    if args.json:
+        print(json.dumps({**data, "out_dir": str(out_dir)}, indent=2))
+    elif not args.quiet:
+        _print_sweep(data, out_dir / SWEEP_REPORT)
+    failed = sum(row["failed"] for row in data["values"])
+    if failed:
+        print(f"{failed} seed{'s' * (failed != 1)} failed: see the manifests under {out_dir}",
+              file=sys.stderr)
+    return 2 if failed else 0
+
+
+def _print_sweep(data: dict, path: "Path") -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=f"mean difficulty metrics per {data['variable']}")
+    table.add_column(data["variable"], justify="right")
+    table.add_column("built", justify="right")
+    for metric in data["metrics"]:
+        table.add_column(metric.replace("_", " "), justify="right")
+    for row in data["values"]:
+        cells = [f"{row['value']:g}", str(row["houses"])]
+        cells += ["—" if row[m] is None else f"{row[m]:.3g}" for m in data["metrics"]]
+        table.add_row(*cells)
+    console = Console()
+    console.print(table)
+    console.print(f"written to {path}", highlight=False)
 
 
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None],

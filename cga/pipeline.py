@@ -14,7 +14,7 @@ from __future__ import annotations
 import contextlib
 import math
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -93,7 +93,8 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
 
 def check_grammar(grammar_path: str | Path, *, seed: int = 0, units: float | None = None,
                   robot_radius: float = 0.25, formats: Sequence[str] = ("glb",),
-                  max_depth: int = DEFAULT_MAX_DEPTH, **_other_build_options: Any) -> None:
+                  max_depth: int = DEFAULT_MAX_DEPTH, overrides: Mapping[str, str] | None = None,
+                  **_other_build_options: Any) -> None:
     """Raise what :func:`build` would raise for every seed before deriving anything: a
     missing or unreadable grammar, a syntax error, a bad option (``cga batch`` checks
     this once instead of failing each seed the same way).
@@ -105,7 +106,13 @@ def check_grammar(grammar_path: str | Path, *, seed: int = 0, units: float | Non
     path = Path(grammar_path)
     text = read_grammar(path)
     _check_options(seed, units, robot_radius, formats, max_depth)
-    parse(text, str(path))
+    grammar = parse(text, str(path))
+    if overrides:
+        from .evaluator import evaluate_variables
+        from .overrides import check_override_names
+
+        check_override_names(grammar, overrides)
+        evaluate_variables(grammar, seed, overrides)  # the values' kinds
 
 
 def run_checks(scene: Scene, *, robot_radius: float = 0.25) -> None:
@@ -186,7 +193,8 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
           formats: Sequence[str] = ("glb",), physics: bool = True, robot_radius: float = 0.25,
           strict: bool = False, quiet: bool = False, max_depth: int = DEFAULT_MAX_DEPTH,
           operations: OperationRegistry | None = None,
-          allow_paths: Sequence[str | Path] = ()) -> Scene:
+          allow_paths: Sequence[str | Path] = (),
+          overrides: Mapping[str, str] | None = None) -> Scene:
     """Build a grammar: derive it, mesh it, check it and write the requested files.
 
     Parameters
@@ -221,6 +229,9 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         Folders besides the grammar's folder tree and the shipped data that rule
         tables, models and the lot file may be read from (``--allow-path``; see
         :mod:`cga.sandbox`). Anything else is refused.
+    overrides:
+        Grammar variables to replace, name → value text (``--set NAME=VALUE``,
+        :mod:`cga.overrides`); each must be declared by the grammar and of its kind.
 
     Returns
     -------
@@ -261,7 +272,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                 derivation = Evaluator(grammar, seed=seed, units=units, operations=operations,
                                        max_depth=max_depth, base_dir=path.parent,
                                        strict=strict, library=library,
-                                       sandbox=sandbox).derive(lot)
+                                       sandbox=sandbox, overrides=overrides).derive(lot)
             timings.update(derivation.timings)
             scene = Scene(name=path.stem, seed=seed, units=derivation.units,
                           terminals=derivation.terminals, source=path,
