@@ -207,6 +207,7 @@ def _door(plan: FloorPlan, door: Door) -> dict[str, Any]:
         "hinge": door.hinge,
         "front": door.is_front,
         "reason": door.reason,
+        "leaf": door.leaf,
         **_door_joint(plan, door),
     }
 
