@@ -123,7 +123,8 @@ def exploration_path(free: np.ndarray, blocked: np.ndarray, drivable: np.ndarray
         c = at[1] + offsets[..., 1]
         inside = (r >= 0) & (r < rows) & (c >= 0) & (c < cols)
         r, c = np.where(inside, r, 0), np.where(inside, c, 0)
-        stop = occluder[r, c] | ~inside
+        # the robot's own cell never hides anything (it may hold a wall's edge)
+        stop = (occluder[r, c] & ((r != at[0]) | (c != at[1]))) | ~inside
         visible = np.cumsum(stop, axis=1) == 0
         seen[r[visible], c[visible]] = True
         seen[at] = True
