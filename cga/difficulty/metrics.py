@@ -221,8 +221,7 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
         centres = clearance >= radius
         if not centres.any():
             break
-        near = ndimage.distance_transform_edt(~centres) * resolution <= radius
-        width[near] = 2 * radius
+        width[ndimage.distance_transform_edt(~centres) * resolution <= radius] = 2 * radius
         radius += WIDTH_STEP / 2
     return width
 
@@ -245,8 +244,14 @@ def grid_metrics(plan: FloorPlan, space: "DriveSpace", reach: "FloorReach",
     body = ndimage.distance_transform_edt(~reached) * res <= radius if reached.any() else reached
     out["reachable_share"] = float((body & free).sum() / free.sum()) if free.any() else None
     clear = np.minimum(space.clearance, 100.0)
-    thickness = local_width(clear, res)
-    out["mean_free_width_m"] = float(thickness[body & free].mean()) if (body & free).any() else None
+    floor = body & free
+    if floor.any():  # the widths of the floor the robot covers, on its bounding box
+        rows, cols = np.nonzero(floor)
+        box = (slice(max(0, rows.min() - 1), rows.max() + 2),
+               slice(max(0, cols.min() - 1), cols.max() + 2))
+        out["mean_free_width_m"] = float(local_width(clear[box], res)[floor[box]].mean())
+    else:
+        out["mean_free_width_m"] = None
     widths = [r.narrowest.width for r in reach.rooms if r.narrowest is not None]
     out["narrowest_free_width_m"] = float(min(widths)) if widths else None
     out["tortuosity"] = None
