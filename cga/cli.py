@@ -15,9 +15,13 @@ import argparse
 import math
 import sys
 from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 from . import __version__
 from .errors import CGAError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from pathlib import Path
 
 __all__ = ["COMMANDS", "main"]
 
@@ -274,7 +278,7 @@ def _run_render(args: argparse.Namespace) -> int:
     return 0
 
 
-def _run_sweep(args: argparse.Namespace, out_dir: "Path", kwargs: dict) -> int:
+def _run_sweep(args: argparse.Namespace, out_dir: Path, kwargs: dict) -> int:
     """``cga batch --sweep``: one batch per value, then a table of metric means."""
     import json
 
@@ -304,7 +308,7 @@ def _run_sweep(args: argparse.Namespace, out_dir: "Path", kwargs: dict) -> int:
     return 2 if failed else 0
 
 
-def _print_sweep(data: dict, path: "Path") -> None:
+def _print_sweep(data: dict, path: Path) -> None:
     from rich.console import Console
     from rich.table import Table
 

@@ -17,10 +17,10 @@ import math
 from typing import Any
 
 from cga.errors import DerivationError
-from cga.model import FloorSettings
 from cga.operation import CheckContext, Child, Operation, OperationContext, Param, is_number
 from cga.shape import Mass, Shape
 
+from .make_floor import floor_settings
 from .usar.catalogue import CatalogueRoom, load_catalogue
 from .usar.generator import generate
 from .usar.plan import plan_from_layout
@@ -96,14 +96,7 @@ class UsarFloor(Operation):
                 f"the footprint is {maxx - minx:.4g} m x {maxz - minz:.4g} m: {columns} x {rows} "
                 f"cells of {cell:g} m; usar_floor needs 4 to {MAX_GRID_CELLS} cells per side",
                 hint="change the lot or the cell size")
-        count, window_width, window_height = args["windows"]
-        settings = FloorSettings(wall_thickness=args["wallWidth"], windows_per_wall=count,
-                                 window_width=window_width, window_height=window_height,
-                                 window_sill=args["window_sill"], door_width=args["doorWidth"],
-                                 door_height=args["doorHeight"])
-        if settings.door_height >= mass.height - settings.slab_thickness:
-            raise DerivationError(f"doorHeight {settings.door_height / ctx.units:g} does not fit "
-                                  f"a storey {mass.height / ctx.units:g} high")
+        settings = floor_settings(args, mass.height, ctx.units)
         catalogue = _catalogue(ctx.resolve(args["catalogue"], "rules"), ctx.cache)
         layout = generate(columns, rows, float(args["difficulty"]), catalogue, ctx.rng)
         plan = plan_from_layout(layout, (minx, minz), ((maxx - minx) / columns, (maxz - minz) / rows),

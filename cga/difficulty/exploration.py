@@ -17,6 +17,7 @@ Docs: docs/difficulty.md ("exploration path").
 from __future__ import annotations
 
 import math
+from typing import Literal
 
 import numpy as np
 from scipy import ndimage
@@ -37,12 +38,13 @@ MAX_GOALS = 400
 _RAYS = 180
 
 
-def _coarsen(mask: np.ndarray, factor: int, how: str) -> np.ndarray:
+def _coarsen(mask: np.ndarray, factor: int, how: Literal["any", "all"]) -> np.ndarray:
+    """Blocks of ``factor`` × ``factor`` cells: true where any (or all) of its cells are."""
     rows, cols = (math.ceil(n / factor) * factor for n in mask.shape)
     padded = np.zeros((rows, cols), dtype=bool)
     padded[:mask.shape[0], :mask.shape[1]] = mask
     blocks = padded.reshape(rows // factor, factor, cols // factor, factor)
-    return blocks.any(axis=(1, 3)) if how == "any" else blocks.all(axis=(1, 3))
+    return np.asarray(blocks.any(axis=(1, 3)) if how == "any" else blocks.all(axis=(1, 3)))
 
 
 def _grid_graph(drivable: np.ndarray, cell: float) -> tuple[csr_matrix, np.ndarray]:

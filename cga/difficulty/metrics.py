@@ -260,13 +260,15 @@ def grid_metrics(plan: FloorPlan, space: "DriveSpace", reach: "FloorReach",
         return out
     distance = _geodesic(reached, space.start, res)
     ratios = []
-    start_xz = np.array(grid.cell_to_world(*space.start))
-    for room_id, mask in space.room_masks.items():
+    start_xz = np.asarray(grid.cell_to_world(*space.start))
+    for mask in space.room_masks.values():
         cells = mask & reached
         if not cells.any():
             continue
-        best = np.unravel_index(int(np.argmax(np.where(cells, clear, -np.inf))), clear.shape)
-        straight = float(np.linalg.norm(np.array(grid.cell_to_world(*best)) - start_xz))
+        row, col = (int(v) for v in np.unravel_index(int(np.argmax(np.where(cells, clear, -np.inf))),
+                                                     clear.shape))
+        best = (row, col)
+        straight = float(np.linalg.norm(np.subtract(grid.cell_to_world(row, col), start_xz)))
         if straight >= MIN_TORTUOSITY_DISTANCE and np.isfinite(distance[best]):
             ratios.append(max(1.0, float(distance[best]) / straight))
     out["tortuosity"] = float(np.mean(ratios)) if ratios else None

@@ -103,10 +103,10 @@ def _header(line: str, file: str, row: int) -> list[str]:
             raise RuleTableError(f"header cell {excerpt(name)} {what}; the header must name "
                                  f"{';'.join(COLUMNS)}", file=file, row=row, column=name)
         order.append(known)
-    for name in COLUMNS:
-        if name not in order:
-            raise RuleTableError(f"missing column '{name}'; the header must name "
-                                 f"{';'.join(COLUMNS)}", file=file, row=row, column=name)
+    missing = [name for name in COLUMNS if name not in order]
+    if missing:
+        raise RuleTableError(f"missing column '{missing[0]}'; the header must name "
+                             f"{';'.join(COLUMNS)}", file=file, row=row, column=missing[0])
     return order
 
 
