@@ -309,19 +309,23 @@ def _run_sweep(args: argparse.Namespace, out_dir: Path, kwargs: dict) -> int:
 
 
 def _print_sweep(data: dict, path: Path) -> None:
+    """One row per metric, one column per value (eleven values fit a terminal; eleven
+    metrics as columns would not)."""
     from rich.console import Console
     from rich.table import Table
 
+    rows = data["values"]
     table = Table(title=f"mean difficulty metrics per {data['variable']}")
-    table.add_column(data["variable"], justify="right")
-    table.add_column("built", justify="right")
+    table.add_column(data["variable"], justify="left", no_wrap=True)
+    for row in rows:
+        table.add_column(f"{row['value']:g}", justify="right", no_wrap=True)
+    table.add_row("built", *(str(row["houses"]) for row in rows))
     for metric in data["metrics"]:
-        table.add_column(metric.replace("_", " "), justify="right")
-    for row in data["values"]:
-        cells = [f"{row['value']:g}", str(row["houses"])]
-        cells += ["—" if row[m] is None else f"{row[m]:.3g}" for m in data["metrics"]]
-        table.add_row(*cells)
+        table.add_row(metric.replace("_", " "),
+                      *("—" if row[metric] is None else f"{row[metric]:.3g}" for row in rows))
     console = Console()
+    if not console.is_terminal:  # a file or a pipe: no terminal width to squeeze into
+        console = Console(width=160)
     console.print(table)
     console.print(f"written to {path}", highlight=False)
 
