@@ -29,10 +29,11 @@ import socket
 import time
 import traceback
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .difficulty.metrics import mean_metrics
 from .errors import CGAError, ExportError, UsageError
 from .quality import quality_report
 
@@ -76,6 +77,10 @@ class BatchRecord:
     """Layout quality over the floors (:mod:`cga.quality`): worst circulation share,
     most doors of a room, counts of private rooms passed through, rooms reached only
     through private rooms, areas out of range and rule-less rooms."""
+    views: int = 0
+    """Camera views rendered (``--export render``: room views and top-down views)."""
+    difficulty: dict[str, Any] = field(default_factory=dict)
+    """The building's measured difficulty (:meth:`cga.difficulty.DifficultyReport.totals`)."""
 
     def to_json(self) -> str:
         return json.dumps(self.__dict__, sort_keys=True)
@@ -151,6 +156,8 @@ class BatchReport:
             "mean_seconds": round(self.mean_seconds, 4),
             "p95_seconds": round(self.p95_seconds, 4),
             "houses_per_second": round(self.houses_per_second, 3),
+            "views": sum(r.views for r in self.built),
+            "difficulty_means": mean_metrics(r.difficulty for r in self.built if r.difficulty),
         }
 
 
@@ -207,6 +214,7 @@ def _summarise(scene: Scene, seconds: float, seed: int) -> BatchRecord:
         items_left_out=left_out,
         checks=checks,
         quality=_quality_totals(quality_report(list(scene.floors))),
+        difficulty=scene.difficulty.totals() if scene.difficulty is not None else {},
     )
 
 
@@ -268,6 +276,9 @@ def _build_one(grammar: str, seed: int, out_dir: str, build_options: dict[str, A
         shutil.rmtree(staging, ignore_errors=True)
         raise
     record = _summarise(scene, time.perf_counter() - start, seed)
+    views = sum(1 for _ in staging.glob("*.render/*.camera.json"))
+    if views:
+        record = replace(record, views=views)
     staging.mkdir(parents=True, exist_ok=True)  # a build that writes no files
     _publish(out, seed, staging)
     return record

@@ -1,4 +1,4 @@
-"""The ``cga`` command line: ``cga build``, ``cga check`` and ``cga batch``.
+"""The ``cga`` command line: ``cga build``, ``cga check``, ``cga batch`` and ``cga render``.
 
 Every user error is a :class:`~cga.errors.CGAError`: its message (file:line:column, the
 line and a caret for grammar errors) goes to stderr and the exit status is 2, with no
@@ -15,9 +15,13 @@ import argparse
 import math
 import sys
 from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 from . import __version__
 from .errors import CGAError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from pathlib import Path
 
 __all__ = ["COMMANDS", "main"]
 
@@ -34,9 +38,31 @@ def _add_allow_path(parser: argparse.ArgumentParser) -> None:
                              "(repeatable; anything else is refused)")
 
 
+def _add_output(parser: argparse.ArgumentParser, json_help: str) -> None:
+    """``--quiet`` or ``--json`` (one of them)."""
+    output = parser.add_mutually_exclusive_group()
+    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    output.add_argument("--json", action="store_true", help=json_help)
+
+
+def _add_set(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        dest="overrides",
+                        help="replace a variable of the grammar's Variables: section, e.g. "
+                             "--set difficulty=7 (repeatable; the value must be of the "
+                             "variable's kind)")
+
+
+def _overrides(args: argparse.Namespace) -> dict[str, str]:
+    from .overrides import parse_assignments
+
+    return parse_assignments(args.overrides)
+
+
 def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
     _add_allow_path(parser)
+    _add_set(parser)
     parser.add_argument("--seed", type=int, default=0, metavar="N",
                         help="random seed; the same seed gives byte-identical files (default 0)")
     parser.add_argument("--lot", metavar="LOT",
@@ -53,13 +79,10 @@ def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--robot-radius", type=float, default=0.25, metavar="R",
                         help="robot radius in metres for the navigability check (default 0.25)")
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
-                        help="extra outputs, comma separated: obj,urdf,sdf,map,view")
+                        help="extra outputs, comma separated: obj,urdf,sdf,mjcf,usd,map,view,render")
     parser.add_argument("--max-depth", type=int, default=64, metavar="N",
                         help="derivation depth limit (default 64)")
-    output = parser.add_mutually_exclusive_group()
-    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
-    output.add_argument("--json", action="store_true",
-                        help="print a machine-readable summary (JSON) on stdout")
+    _add_output(parser, "print a machine-readable summary (JSON) on stdout")
 
 
 def _run_build(args: argparse.Namespace) -> int:
@@ -74,7 +97,7 @@ def _run_build(args: argparse.Namespace) -> int:
                   out_dir=out_dir, formats=formats, physics=not args.no_physics,
                   robot_radius=args.robot_radius, strict=args.strict,
                   quiet=args.quiet or args.json, max_depth=args.max_depth,
-                  allow_paths=args.allow_paths)
+                  allow_paths=args.allow_paths, overrides=_overrides(args))
     if args.json:
         import json
 
@@ -129,6 +152,11 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-n", "--count", type=_whole_number, required=True, metavar="N",
                         help="number of seeds to build (1000 or 1e6)")
     _add_allow_path(parser)
+    _add_set(parser)
+    parser.add_argument("--sweep", metavar="NAME=LO:HI[:STEP]",
+                        help="build the seeds once per value of a grammar variable, e.g. "
+                             "--sweep difficulty=0:10, into <out>/NAME=VALUE/; the report "
+                             "gives each value's mean difficulty metrics (sweep.json)")
     parser.add_argument("--seed-start", type=_whole_number, default=0, metavar="S",
                         help="first seed (default 0)")
     parser.add_argument("--jobs", type=int, default=1, metavar="J",
@@ -141,11 +169,8 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
                         help="skip the physics and navigability checks")
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
                         help="extra outputs per seed besides glb and scene JSON, comma "
-                             "separated: plan,obj,urdf,sdf,map,view")
-    output = parser.add_mutually_exclusive_group()
-    output.add_argument("--quiet", action="store_true", help="print nothing but errors")
-    output.add_argument("--json", action="store_true",
-                        help="print the batch report (JSON) on stdout")
+                             "separated: plan,obj,urdf,sdf,mjcf,usd,map,view,render")
+    _add_output(parser, "print the batch report (JSON) on stdout")
 
 
 def _run_batch(args: argparse.Namespace) -> int:
@@ -157,9 +182,12 @@ def _run_batch(args: argparse.Namespace) -> int:
 
     out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.grammar).stem}-batch"
     options = {"physics": not args.no_physics, "allow_paths": args.allow_paths,
-               "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export]))}
+               "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export])),
+               "overrides": _overrides(args)}
     kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
                   time_limit=args.time_limit, build_options=options)
+    if args.sweep:
+        return _run_sweep(args, out_dir, kwargs)
     if args.quiet or args.json:
         report = run_batch(args.grammar, **kwargs)
     else:
@@ -192,12 +220,124 @@ def _run_batch(args: argparse.Namespace) -> int:
     return 2
 
 
+def _add_render_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("scene", metavar="FILE",
+                        help="a build's <name>.scene.json (its <name>.glb must be beside it)")
+    parser.add_argument("--out", metavar="DIR",
+                        help="folder to write <name>.render/ into (default: the scene's folder)")
+    parser.add_argument("--width", type=int, default=640, metavar="W",
+                        help="image width in pixels (default 640)")
+    parser.add_argument("--height", type=int, default=480, metavar="H",
+                        help="image height in pixels (default 480)")
+    parser.add_argument("--fov", type=float, default=90.0, metavar="DEGREES",
+                        help="horizontal field of view (default 90)")
+    parser.add_argument("--eye-height", type=float, default=1.0, metavar="M",
+                        help="camera height above the walking surface in metres (default 1.0)")
+    parser.add_argument("--views-per-room", type=int, default=1, metavar="N",
+                        help="camera views per room (default 1)")
+    parser.add_argument("--robot-radius", type=float, default=0.25, metavar="R",
+                        help="cameras stand at least this far from obstacles, in metres, "
+                             "where a robot of this radius can drive (default 0.25)")
+    _add_output(parser, "print what was written (JSON) on stdout")
+
+
+def _run_render(args: argparse.Namespace) -> int:
+    import json
+    import time
+    from pathlib import Path
+
+    from .errors import UsageError
+    from .export import check_formats
+    from .fsutil import atomic_output_dir
+
+    check_formats(["render"])
+    from .render.files import render_folder, write_render
+    from .render.inputs import inputs_from_files
+    from .render.placement import RenderOptions
+
+    try:
+        options = RenderOptions(width=args.width, height=args.height, fov=args.fov,
+                                eye_height=args.eye_height, views_per_room=args.views_per_room,
+                                robot_radius=args.robot_radius)
+    except ValueError as error:
+        raise UsageError(f"cga render: {error}") from None
+    scene = Path(args.scene)
+    inputs = inputs_from_files(scene)
+    out_dir = Path(args.out) if args.out else scene.parent
+    started = time.perf_counter()
+    with atomic_output_dir(out_dir, protect=[scene]) as staging:
+        written = write_render(inputs, options, staging, inputs.name)
+    seconds = time.perf_counter() - started
+    folder = out_dir / render_folder(inputs.name)
+    views = sum(1 for p in written if p.name.endswith(".camera.json"))
+    if args.json:
+        print(json.dumps({"folder": str(folder), "views": views, "files": len(written),
+                          "seconds": round(seconds, 3)}, indent=2))
+    elif not args.quiet:
+        print(f"{views} views ({len(written)} files) in {folder}, {seconds:.2f} s")
+    return 0
+
+
+def _run_sweep(args: argparse.Namespace, out_dir: Path, kwargs: dict) -> int:
+    """``cga batch --sweep``: one batch per value, then a table of metric means."""
+    import json
+
+    from .overrides import parse_sweep
+    from .sweep import SWEEP_REPORT, run_sweep, value_text
+
+    name, values = parse_sweep(args.sweep)
+    if args.quiet or args.json:
+        report = run_sweep(args.grammar, name=name, values=values, **kwargs)
+    else:
+        from rich.console import Console
+
+        console = Console(stderr=True)
+        report = run_sweep(args.grammar, name=name, values=values, **kwargs,
+                           on_value=lambda v: console.print(
+                               f"{name} = {value_text(v)}: building {args.count} seeds…",
+                               highlight=False))
+    data = report.to_dict()
+    if args.json:
+        print(json.dumps({**data, "out_dir": str(out_dir)}, indent=2))
+    elif not args.quiet:
+        _print_sweep(data, out_dir / SWEEP_REPORT)
+    failed = sum(row["failed"] for row in data["values"])
+    if failed:
+        print(f"{failed} seed{'s' * (failed != 1)} failed: see the manifests under {out_dir}",
+              file=sys.stderr)
+    return 2 if failed else 0
+
+
+def _print_sweep(data: dict, path: Path) -> None:
+    """One row per metric, one column per value (eleven values fit a terminal; eleven
+    metrics as columns would not)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    rows = data["values"]
+    table = Table(title=f"mean difficulty metrics per {data['variable']}")
+    table.add_column(data["variable"], justify="left", no_wrap=True)
+    for row in rows:
+        table.add_column(f"{row['value']:g}", justify="right", no_wrap=True)
+    table.add_row("built", *(str(row["houses"]) for row in rows))
+    for metric in data["metrics"]:
+        table.add_row(metric.replace("_", " "),
+                      *("—" if row[metric] is None else f"{row[metric]:.3g}" for row in rows))
+    console = Console()
+    if not console.is_terminal:  # a file or a pipe: no terminal width to squeeze into
+        console = Console(width=160)
+    console.print(table)
+    console.print(f"written to {path}", highlight=False)
+
+
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None],
                           Callable[[argparse.Namespace], int]]] = {
     "build": ("derive, check and export a building", _add_build_arguments, _run_build),
     "check": ("check a grammar without building it", _add_check_arguments, _run_check),
     "batch": ("build many seeds into one folder each, with a manifest (resumable)",
               _add_batch_arguments, _run_batch),
+    "render": ("render camera views, depth, semantic and instance masks of a build",
+               _add_render_arguments, _run_render),
 }
 """Subcommand name → (help, add_arguments, run)."""
 

@@ -48,6 +48,7 @@ from .errors import (BudgetError, DerivationError, ResourceAccessError, Resource
 from .expressions import UNKNOWN, Namespace, Value, describe, evaluate, shape_attributes
 from .lot import DEFAULT_LOT, lot_from_call, rectangle
 from .model import Diagnostic
+from .overrides import check_override_names, override_value
 from .randomness import shape_rng, variable_rng
 from .resources import resolve_resource
 from .sandbox import Sandbox
@@ -158,10 +159,13 @@ def evaluate_units(grammar: ast.Grammar) -> float:
     return value
 
 
-def evaluate_variables(grammar: ast.Grammar, seed: int | None) -> dict[str, Value]:
+def evaluate_variables(grammar: ast.Grammar, seed: int | None,
+                       overrides: Mapping[str, str] | None = None) -> dict[str, Value]:
     """Evaluate the Variables section in order.
 
     ``seed=None`` evaluates statically (for ``cga check``): ranges become UNKNOWN.
+    ``overrides`` (``--set NAME=VALUE``, :mod:`cga.overrides`) replace a variable's value
+    by text of the same kind; later variables see the new value.
 
     Raises
     ------
@@ -175,7 +179,10 @@ def evaluate_variables(grammar: ast.Grammar, seed: int | None) -> dict[str, Valu
         pending.pop(assignment.name, None)
         rng = None if seed is None else variable_rng(seed, assignment.name)
         ns = Namespace(variables=values, attributes=None, rng=rng, later=pending)
-        values[assignment.name] = evaluate(assignment.value, ns)
+        value = evaluate(assignment.value, ns)
+        if overrides and assignment.name in overrides:
+            value = override_value(assignment.name, overrides[assignment.name], value)
+        values[assignment.name] = value
     return values
 
 
@@ -358,13 +365,20 @@ class Evaluator:
     sandbox:
         The folders rule tables and models may be read from (:mod:`cga.sandbox`);
         default: ``base_dir`` and the shipped data.
+    overrides:
+        ``--set`` values of grammar variables (name → text, :mod:`cga.overrides`).
+
+    Raises
+    ------
+    UsageError
+        An override names no variable of the grammar.
     """
 
     def __init__(self, grammar: ast.Grammar, *, seed: int = 0, units: float | None = None,
                  operations: OperationRegistry | None = None,
                  max_depth: int = DEFAULT_MAX_DEPTH, base_dir: str | Path | None = None,
                  strict: bool = False, library: ModelLibrary | None = None,
-                 sandbox: Sandbox | None = None):
+                 sandbox: Sandbox | None = None, overrides: Mapping[str, str] | None = None):
         if seed < 0:
             raise ValueError(f"seed must be non-negative, got {seed}")
         check_max_depth(max_depth)
@@ -379,6 +393,8 @@ class Evaluator:
         self.strict = strict
         self.sandbox = sandbox if sandbox is not None else Sandbox.for_grammar(self.base_dir)
         self.rules = index_rules(grammar)
+        self.overrides = dict(overrides or {})
+        check_override_names(grammar, self.overrides)
         if library is None:
             # imported here: `cga check` uses this module and needs no model files
             from cga.operations.furniture.library import grammar_library
@@ -398,7 +414,7 @@ class Evaluator:
         CGAError
             Errors raised by operations (rule tables, infeasible typing, ...).
         """
-        variables = evaluate_variables(self.grammar, self.seed)
+        variables = evaluate_variables(self.grammar, self.seed, self.overrides)
         footprint = lot if lot is not None else self._grammar_lot(variables)
         symbol = start_symbol(self.grammar)
         mass = Mass(footprint=footprint, base=0.0, height=0.0)

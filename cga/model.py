@@ -225,7 +225,9 @@ class Door:
     ``hinge`` end (``"start"`` or ``"end"`` of the wall direction) and swings into
     ``swing_room`` through a quarter circle of radius ``width``. ``state`` is how the
     build leaves it and ``angle`` (rad, 0 = closed, :data:`DOOR_OPEN_ANGLE` = open) how
-    far the leaf is turned into ``swing_room``.
+    far the leaf is turned into ``swing_room``. A door without a ``leaf`` is a bare
+    opening (the doorways and hallway junctions of ``usar_floor``): always open, with no
+    leaf item, joint or swing.
     """
 
     id: int
@@ -240,6 +242,7 @@ class Door:
     reason: Literal["rule", "reachability", "front", "stair"] = "rule"
     state: DoorState = "closed"
     angle: float = 0.0
+    leaf: bool = True
 
     @property
     def passable(self) -> bool:

@@ -3,7 +3,7 @@
 
 ``parse → derive → Scene → scene nodes (meshes) → checks → exporters``. Every stage is
 timed into ``scene.timings`` (``parse``, ``derive`` and, inside it, each operation by
-name, ``meshing``, ``physics``, ``navigability``, ``export``). Checks run only for
+name, ``meshing``, ``physics``, ``navigability``, ``difficulty``, ``export``). Checks run only for
 scenes with floors and are imported only then, as are the exporters, so a massing build
 never loads pybullet. All files of a build are staged and moved into the output folder
 only when every exporter has succeeded (:func:`cga.fsutil.atomic_output_dir`).
@@ -14,7 +14,7 @@ from __future__ import annotations
 import contextlib
 import math
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -28,7 +28,7 @@ from .scene import Scene
 __all__ = ["MAX_ROBOT_RADIUS", "STAGES", "build", "check_grammar", "default_out_dir", "run_checks",
            "export_scene"]
 
-STAGES = ("parse", "derive", "meshing", "physics", "navigability", "export")
+STAGES = ("parse", "derive", "meshing", "physics", "navigability", "difficulty", "export")
 """Pipeline stages as they appear in ``Scene.timings`` (operation timings are the other keys)."""
 
 
@@ -93,7 +93,8 @@ def _check_options(seed: int, units: float | None, robot_radius: float, formats:
 
 def check_grammar(grammar_path: str | Path, *, seed: int = 0, units: float | None = None,
                   robot_radius: float = 0.25, formats: Sequence[str] = ("glb",),
-                  max_depth: int = DEFAULT_MAX_DEPTH, **_other_build_options: Any) -> None:
+                  max_depth: int = DEFAULT_MAX_DEPTH, overrides: Mapping[str, str] | None = None,
+                  **_other_build_options: Any) -> None:
     """Raise what :func:`build` would raise for every seed before deriving anything: a
     missing or unreadable grammar, a syntax error, a bad option (``cga batch`` checks
     this once instead of failing each seed the same way).
@@ -105,17 +106,28 @@ def check_grammar(grammar_path: str | Path, *, seed: int = 0, units: float | Non
     path = Path(grammar_path)
     text = read_grammar(path)
     _check_options(seed, units, robot_radius, formats, max_depth)
-    parse(text, str(path))
+    grammar = parse(text, str(path))
+    if overrides:
+        from .evaluator import evaluate_variables
+        from .overrides import check_override_names
+
+        check_override_names(grammar, overrides)
+        evaluate_variables(grammar, seed, overrides)  # the values' kinds
 
 
 def run_checks(scene: Scene, *, robot_radius: float = 0.25) -> None:
     """Run the physics and navigability checks on ``scene.nodes`` into ``scene.checks``
-    (floors only).
+    (floors only), then measure ``scene.difficulty`` from their grids.
 
     Each entry is the check's report (a :class:`~cga.report.CheckReport`); their times
     go to ``scene.timings``.
     """
-    _run_checks(scene, robot_radius, _Progress(scene.timings, quiet=True))
+    from .difficulty import measure_scene
+
+    progress = _Progress(scene.timings, quiet=True)
+    _run_checks(scene, robot_radius, progress)
+    with progress.stage("difficulty", "measuring difficulty…"):
+        scene.difficulty = measure_scene(scene)
 
 
 def _run_checks(scene: Scene, robot_radius: float, progress: _Progress) -> None:
@@ -181,7 +193,8 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
           formats: Sequence[str] = ("glb",), physics: bool = True, robot_radius: float = 0.25,
           strict: bool = False, quiet: bool = False, max_depth: int = DEFAULT_MAX_DEPTH,
           operations: OperationRegistry | None = None,
-          allow_paths: Sequence[str | Path] = ()) -> Scene:
+          allow_paths: Sequence[str | Path] = (),
+          overrides: Mapping[str, str] | None = None) -> Scene:
     """Build a grammar: derive it, mesh it, check it and write the requested files.
 
     Parameters
@@ -216,6 +229,9 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         Folders besides the grammar's folder tree and the shipped data that rule
         tables, models and the lot file may be read from (``--allow-path``; see
         :mod:`cga.sandbox`). Anything else is refused.
+    overrides:
+        Grammar variables to replace, name → value text (``--set NAME=VALUE``,
+        :mod:`cga.overrides`); each must be declared by the grammar and of its kind.
 
     Returns
     -------
@@ -229,6 +245,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
         the allowed folders, bad option, strict failure); source errors carry the
         grammar text for their excerpt.
     """
+    from .difficulty import measure_scene
     from .operations.furniture.library import grammar_library
     from .parser import parse, read_grammar
     from .sandbox import Sandbox
@@ -255,7 +272,7 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                 derivation = Evaluator(grammar, seed=seed, units=units, operations=operations,
                                        max_depth=max_depth, base_dir=path.parent,
                                        strict=strict, library=library,
-                                       sandbox=sandbox).derive(lot)
+                                       sandbox=sandbox, overrides=overrides).derive(lot)
             timings.update(derivation.timings)
             from .building import stack_storeys
 
@@ -267,6 +284,8 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                 scene.nodes  # noqa: B018 - made once here, timed; checks and exporters reuse them
             if physics:
                 _run_checks(scene, robot_radius, progress)
+            with progress.stage("difficulty", "measuring difficulty…"):
+                scene.difficulty = measure_scene(scene)
             failed = [c for c in scene.checks.values() if not c.passed]
             if strict and failed:
                 raise NoSolutionError("strict mode: the build does not pass its checks",

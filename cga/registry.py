@@ -30,6 +30,7 @@ DEFAULT_OPERATIONS: dict[str, str] = {
     "make_floor": "cga.operations.make_floor:MakeFloor",
     "type_rooms": "cga.operations.type_rooms:TypeRooms",
     "add_furniture": "cga.operations.add_furniture:AddFurniture",
+    "usar_floor": "cga.operations.usar_floor:UsarFloor",
 }
 
 

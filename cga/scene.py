@@ -19,6 +19,7 @@ from .shape import Shape
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
+    from cga.difficulty import DifficultyReport
     from cga.operations.furniture.library import ModelLibrary
 
     from .doors import DoorLeaf
@@ -100,7 +101,8 @@ class Scene:
     ``terminals`` are the leaves of the shape tree in derivation order; those with a
     ``plan`` are storeys, the rest plain geometry. ``checks`` is filled by the physics
     and navigability checks (check name → report object); ``timings`` maps stage name →
-    seconds. ``library`` is the
+    seconds. ``difficulty`` holds the measured difficulty (:mod:`cga.difficulty`),
+    set by the build after the checks. ``library`` is the
     build's furniture model library (the one ``add_furniture`` sized items with); the
     meshing layer poses its models. :attr:`nodes` are the build's meshes, made once.
     """
@@ -113,6 +115,7 @@ class Scene:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
     checks: dict[str, CheckReport] = field(default_factory=dict)
+    difficulty: "DifficultyReport | None" = None
     library: "ModelLibrary | None" = None
     _nodes: tuple[SceneNode, ...] | None = field(default=None, repr=False, compare=False)
 

@@ -50,7 +50,8 @@ def summary_dict(scene: Scene, *, out_dir: str | Path | None = None) -> dict[str
     ``circulation_share`` (halls and corridors over the rooms' area), ``rooms`` [``id``, ``type``, ``area_m2``, ``doors``, ``items``], ``doors``,
     ``windows``, ``items``), ``shapes`` (terminal masses and faces), ``diagnostics``
     (``level``, ``stage``, ``message``, ``floor``, ``room``), ``checks`` (per check:
-    ``passed``, ``summary``), ``timings`` (seconds per stage and operation) and
+    ``passed``, ``summary``), ``timings`` (seconds per stage and operation),
+    ``difficulty`` (the measured difficulty, docs/difficulty.md; None without floors) and
     ``out_dir`` when given.
     """
     data: dict[str, Any] = {
@@ -64,6 +65,7 @@ def summary_dict(scene: Scene, *, out_dir: str | Path | None = None) -> dict[str
         "checks": {name: {"passed": report.passed, "summary": report.summary()}
                    for name, report in scene.checks.items()},
         "timings": {name: round(seconds, 4) for name, seconds in scene.timings.items()},
+        "difficulty": scene.difficulty.to_dict() if scene.difficulty is not None else None,
     }
     if out_dir is not None:
         data["out_dir"] = str(out_dir)
@@ -120,6 +122,8 @@ def print_summary(scene: Scene, *, out_dir: str | Path | None = None, console: A
     for name, check in data["checks"].items():
         mark = "[green]✓[/green]" if check["passed"] else "[red]✗[/red]"
         console.print(f"{mark} {escape(check['summary'] or name)}", highlight=False)
+    if scene.difficulty is not None:
+        console.print(escape(scene.difficulty.summary()), highlight=False)
     console.print(f"[dim]{_timing_line(scene.timings)}[/dim]", highlight=False)
     if out_dir is not None:
         console.print(f"written to {escape(str(out_dir))}", highlight=False)

@@ -19,9 +19,13 @@ from cga.shape import Face, Mass, Shape
 
 from cga.operation import Child, Operation, OperationContext, Param, is_number
 
-__all__ = ["Extrude"]
+__all__ = ["MIN_HEIGHT", "Extrude"]
 
 _HORIZONTAL = 1e-9
+
+MIN_HEIGHT = 1e-6
+"""Least prism height (m): a micrometre, the grid plans and meshes are rounded to; below
+it a prism has no volume to mesh (``units = 1e-9`` made nanometre buildings)."""
 
 
 class Extrude(Operation):
@@ -35,6 +39,9 @@ class Extrude(Operation):
         height = args["height"]
         if is_number(height) and not height > 0:
             raise DerivationError(f"extrude height must be positive, got {height / units:g}")
+        if is_number(height) and height < MIN_HEIGHT:
+            raise DerivationError(f"extrude height {height / units:g} is {height:.3g} m, below "
+                                  f"a micrometre", hint="check the grammar's units (metres per unit)")
 
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
         self.check_values(args, ctx.units)

@@ -43,7 +43,7 @@ from .roomtyping.room_graph import door_sites
 from .stairs import STAIR_KINDS, StairParams, core_for_storey
 from .stairs.access import core_door_spans
 
-__all__ = ["MIN_CORRIDOR_WIDTH", "MakeFloor"]
+__all__ = ["MIN_CORRIDOR_WIDTH", "MakeFloor", "floor_settings"]
 
 MIN_CORRIDOR_WIDTH = 1.2
 """Least corridor width (m): two people pass, a wheelchair turns (docs/architecture.md)."""
@@ -127,7 +127,7 @@ class MakeFloor(Operation):
             raise DerivationError(
                 "make_floor works on a storey (a mass with height), not on this shape",
                 hint='cut the body into storeys first: repeated_split("y", floorHeight){...}')
-        settings = _settings(args, mass.height, ctx.units)
+        settings = floor_settings(args, mass.height, ctx.units)
         footprint = _footprint(mass.footprint)
         split = args["split"]
         lo, hi = args["cut_range"]
@@ -277,9 +277,10 @@ def _corridor(args: dict[str, Any], units: float) -> CorridorSpec:
     return CorridorSpec(mode, width, position, depth, args["n_left"], args["n_right"])  # type: ignore[arg-type]
 
 
-def _settings(args: dict[str, Any], storey: float, units: float) -> FloorSettings:
-    """Floor settings from the arguments (checked by ``check_values``), checked against
-    the storey height."""
+def floor_settings(args: dict[str, Any], storey: float, units: float) -> FloorSettings:
+    """Floor settings from a floor operation's ``wallWidth``, ``windows``,
+    ``window_sill``, ``doorWidth`` and ``doorHeight`` (checked by ``check_values``),
+    checked against the storey height (``make_floor``, ``usar_floor``)."""
     count, window_width, window_height = args["windows"]
     settings = FloorSettings(wall_thickness=args["wallWidth"], windows_per_wall=count,
                              window_width=window_width, window_height=window_height,

@@ -37,7 +37,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -55,6 +55,7 @@ from .occupancy import OccupancyGrid, occupancy_grid
 
 __all__ = [
     "Arrival",
+    "DriveSpace",
     "FloorReach",
     "NavigabilityReport",
     "Bottleneck",
@@ -141,6 +142,26 @@ class RoomReach:
 
 
 @dataclass(frozen=True)
+class DriveSpace:
+    """The grids one floor's check computed, kept for the difficulty metrics
+    (:mod:`cga.difficulty`) so they measure the same space instead of rasterising again.
+
+    ``clearance`` is the distance (m) from each cell centre to the nearest obstacle with
+    every door open; ``reached`` the cells the robot's centre reaches from ``start``
+    (a cell, or None when the robot has no room to start); ``room_masks`` each room's
+    free floor (shrunk by one cell, so doorway cells belong to no room); ``furniture``
+    the cells the furniture (not the door leaves) occupies.
+    """
+
+    grid: OccupancyGrid
+    clearance: np.ndarray
+    reached: np.ndarray
+    start: tuple[int, int] | None
+    room_masks: dict[int, np.ndarray]
+    furniture: np.ndarray
+
+
+@dataclass(frozen=True)
 class FloorReach:
     """One floor's result. ``start`` is ``"front_door"`` (the robot starts outside door
     ``start_door``), ``"stair"`` (on the top landing of the stair ``via_stairs[-1]``, in
@@ -163,6 +184,8 @@ class FloorReach:
     """The stairs on the way from the front door to this floor, bottom up."""
     stair_up_reached: bool | None = None
     """Whether the robot reaches the bottom landing of the stair leaving this floor."""
+    space: DriveSpace | None = field(default=None, repr=False, compare=False)
+    """The grids behind the result (not in :meth:`to_dict`)."""
 
     @property
     def passed(self) -> bool:
@@ -411,7 +434,9 @@ class _FloorCheck:
                           rooms=tuple(rooms), elapsed_seconds=time.perf_counter() - started,
                           closed_doors=tuple(d.id for d in self.plan.doors if not d.passable),
                           via_stairs=self.arrival.via if self.arrival else (),
-                          stair_up_reached=landing_reached)
+                          stair_up_reached=landing_reached,
+                          space=DriveSpace(self.grid, self.clear, reached, cell, self.masks,
+                                           self.grid.occupied_by(o.path for o in self.furniture)))
 
     # -- the start ---------------------------------------------------------------------
 

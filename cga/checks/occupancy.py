@@ -32,6 +32,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 import shapely
@@ -40,12 +41,12 @@ from PIL import Image, ImageDraw
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
-from cga.model import FloorPlan
 from cga.scene import NodeKind, SceneNode
 
 from ._solids import as_manifold
 
 __all__ = [
+    "FloorExtent",
     "Obstacle",
     "OccupancyGrid",
     "band_footprint",
@@ -61,6 +62,20 @@ manifold3d projection along its z axis is the view from above."""
 
 _SHEET = 1e-3
 """Half-thickness (m) given to the triangles of open meshes, whose shadow may be a line."""
+
+
+class FloorExtent(Protocol):
+    """What a grid needs of a floor: a :class:`~cga.model.FloorPlan`, or the outline a
+    renderer reads back from a scene JSON (:class:`cga.render.inputs.FloorOutline`)."""
+
+    @property
+    def index(self) -> int: ...
+
+    @property
+    def floor_y(self) -> float: ...
+
+    @property
+    def footprint(self) -> Polygon: ...
 
 
 @dataclass(frozen=True)
@@ -260,7 +275,7 @@ def grid_resolution(resolution: float, width: float, depth: float) -> float:
     return coarse
 
 
-def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: float = 0.05,
+def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution: float = 0.05,
                    band: tuple[float, float] = (0.05, 1.2), margin: float = 0.5,
                    include_furniture: bool = True, include_doors: bool = True) -> OccupancyGrid:
     """Rasterise one floor's obstacles in the robot's height band.
@@ -268,8 +283,8 @@ def occupancy_grid(plan: FloorPlan, nodes: Sequence[SceneNode], *, resolution: f
     Parameters
     ----------
     plan
-        The floor plan; its footprint sets the grid's extent and ``free_mask``, its
-        walking surface (``floor_y``) the base of the band.
+        The floor plan (or any :class:`FloorExtent`); its footprint sets the grid's
+        extent and ``free_mask``, its walking surface (``floor_y``) the base of the band.
     nodes
         The scene's nodes (world space); those outside the band are skipped, so the
         whole scene can be passed for every floor.

@@ -19,6 +19,7 @@ from .glb import export_glb
 from .mjcf import export_mjcf
 from .obj import export_obj
 from .plan import export_plans
+from .render import export_render
 from .rosmap import export_rosmap
 from .scene_json import export_scene_json
 from .sdf import export_sdf
@@ -43,6 +44,7 @@ EXPORTERS: dict[str, Exporter] = {
     "usd": export_usd,
     "map": export_rosmap,
     "view": export_view,
+    "render": export_render,
 }
 """Format name → writer."""
 
@@ -53,9 +55,11 @@ BATCH_FORMATS: tuple[str, ...] = ("glb", "json")
 """What ``cga batch`` writes per seed without ``--export``: a dataset needs the model and
 its labels; plan pictures (the slowest default output) are one ``--export plan`` away."""
 
-OPTIONAL_MODULES: dict[str, tuple[str, str]] = {"usd": ("pxr", "usd-core")}
-"""Format → (module it imports, package that provides it) for formats whose library is
-not a dependency of cga: ``pip install 'cga[robot]'`` installs them all."""
+OPTIONAL_MODULES: dict[str, tuple[str, str, str]] = {"usd": ("pxr", "usd-core", "robot"),
+                                                     "render": ("embreex", "embreex", "render")}
+"""Format → (module it imports, package that provides it, the extra that installs it) for
+formats whose library is not a dependency of cga: ``pip install 'cga[robot]'`` installs
+the robot formats' libraries, ``pip install 'cga[render]'`` Embree for ``render``."""
 
 
 def missing_packages(formats: Sequence[str]) -> list[str]:
@@ -64,7 +68,7 @@ def missing_packages(formats: Sequence[str]) -> list[str]:
 
     return list(dict.fromkeys(
         package for fmt in formats if fmt in OPTIONAL_MODULES
-        for module, package in [OPTIONAL_MODULES[fmt]]
+        for module, package, _ in [OPTIONAL_MODULES[fmt]]
         if importlib.util.find_spec(module) is None))
 
 
@@ -83,5 +87,9 @@ def check_formats(formats: Sequence[str]) -> None:
                          f"{', '.join(unknown)}; available: {', '.join(EXPORTERS)}")
     missing = missing_packages(formats)
     if missing:
+        extras = ",".join(dict.fromkeys(OPTIONAL_MODULES[f][2] for f in formats
+                                        if f in OPTIONAL_MODULES
+                                        and OPTIONAL_MODULES[f][1] in missing))
         raise UsageError(f"--export {','.join(formats)} needs {' and '.join(missing)}, "
-                         f"which is not installed: pip install 'cga[robot]'")
+                         f"which {'is' if len(missing) == 1 else 'are'} not installed: "
+                         f"pip install 'cga[{extras}]'")

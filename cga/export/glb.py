@@ -12,7 +12,8 @@ by its quarter turns; a door leaf at its hinge, turned by the build's door angle
 (:mod:`cga.doors`). Their meshes are given in that local frame, so instances of the same
 model (same size) share one glTF mesh, and a viewer or Blender turns an item or swings a
 door about the right point. Meshes carry normals. A node's ``extras`` are its semantic
-labels plus its ``kind`` and ``static`` flag; y up, metres. Meshes that carry no colour of
+labels plus its ``kind`` and ``static`` flag, its semantic ``class_id`` and ``class`` and
+its ``instance_id`` (:mod:`cga.semantics`); y up, metres. Meshes that carry no colour of
 their own get a material of their kind's colour (:func:`cga.export.palette.node_color`).
 
 The bytes are a pure function of the scene: nodes in the given order, no timestamps,
@@ -32,6 +33,7 @@ from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.model import FloorPlan, rotation_matrix
 from cga.scene import Scene, SceneNode
+from cga.semantics import class_names, instance_ids, node_class
 
 from .palette import node_color
 
@@ -150,12 +152,17 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     groups = _group_extras(scene)
     seen: set[str] = set()
     meshes: dict[str, str] = {}
+    instances = instance_ids(nodes)
+    names = class_names()
     for node in nodes:
         if node.path in seen or node.path in (root, "world"):
             raise ExportError(f"two scene nodes are both named {node.path!r}")
         seen.add(node.path)
         try:
-            extras = json_safe({**node.labels, "kind": node.kind, "static": node.static})
+            cid = node_class(node)
+            extras = json_safe({**node.labels, "kind": node.kind, "static": node.static,
+                                "class_id": cid, "class": names[cid],
+                                "instance_id": instances[node.path]})
         except TypeError as error:
             raise ExportError(f"node {node.path!r}: {error}") from None
         parent = _parent(tm_scene, node.path, root, groups)

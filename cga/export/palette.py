@@ -10,6 +10,12 @@ from __future__ import annotations
 
 import colorsys
 import hashlib
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    import trimesh
 
 __all__ = [
     "RGB",
@@ -18,6 +24,7 @@ __all__ = [
     "KIND_COLORS",
     "room_color",
     "node_color",
+    "face_colors",
     "hex_color",
 ]
 
@@ -85,6 +92,27 @@ def room_color(room_type: str | None) -> RGB:
 def node_color(kind: str) -> RGB:
     """The display colour of a scene node without colours of its own: its kind's."""
     return KIND_COLORS.get(kind, _OTHER_KIND_COLOR)
+
+
+def face_colors(mesh: "trimesh.Trimesh", kind: str) -> np.ndarray:
+    """``float[faces, 3]`` sRGB colour of every triangle: the mesh's own colours (vertex or
+    face colours, e.g. of a furniture model; a material's base colour, e.g. read back from
+    a glb), else its node kind's colour."""
+    import trimesh
+
+    visual = mesh.visual
+    count = len(mesh.faces)
+    if isinstance(visual, trimesh.visual.ColorVisuals) and visual.kind is not None:
+        colors = np.asarray(visual.face_colors)
+        if len(colors) == count:
+            return colors[:, :3].astype(float) / 255.0
+    material = getattr(visual, "material", None)
+    base = getattr(material, "baseColorFactor", None)
+    if base is not None and len(base) >= 3:
+        rgb = np.asarray(base)[:3]  # trimesh keeps it as uint8; glTF writes 0..1 floats
+        scale = 255.0 if np.issubdtype(rgb.dtype, np.integer) else 1.0
+        return np.tile(rgb.astype(float) / scale, (count, 1))
+    return np.tile(node_color(kind), (count, 1))
 
 
 def hex_color(color: RGB) -> str:

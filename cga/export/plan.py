@@ -352,6 +352,8 @@ def _draw_windows(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
 
 def _draw_doors(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
     for door in plan.doors:
+        if not door.leaf:  # a bare opening: the gap in the wall is all there is
+            continue
         wall = plan.wall(door.wall)
         s = _along(wall, door.position)
         hinge_s, free_s = ((s - door.width / 2, s + door.width / 2) if door.hinge == "start"

@@ -37,6 +37,7 @@ from cga.fsutil import atomic_write
 from cga.model import OUTSIDE, Door, Flight, FloorPlan, FurnitureItem, Room, Stair, Wall, Window
 from cga.quality import quality_report
 from cga.scene import Scene, SceneNode
+from cga.semantics import class_names, class_table, instance_ids, node_class
 
 __all__ = [
     "FORMAT",
@@ -44,6 +45,7 @@ __all__ = [
     "load_schema",
     "scene_as_dict",
     "scene_json_text",
+    "json_text",
     "export_scene_json",
 ]
 
@@ -89,7 +91,8 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
     ExportError
         A value cannot be represented in JSON (e.g. a NaN in the checks).
     """
-    node_paths = {node.path for node in nodes}
+    labels = _node_labels(nodes)
+    node_paths = set(labels)
     leaves = {node.path: node for node in nodes if node.door is not None}
     floors = scene.floors
     stairs = sorted({s.id: s for p in floors for s in p.stairs}.values(), key=lambda s: s.id)
@@ -111,25 +114,32 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "walls": [_wall(p, w) for p in floors for w in p.walls],
         "doors": [_door(p, d) for p in floors for d in p.doors],
         "windows": [_window(p, w) for p in floors for w in p.windows],
-        "furniture": [_furniture(p, f, node_paths, leaves) for p in floors for f in p.furniture],
+        "furniture": [_furniture(p, f, labels, leaves) for p in floors for f in p.furniture],
         "room_graph": [e for p in floors for e in _graph_edges(p)] + [_stair_edge(s) for s in stairs],
         "stairs": [_stair(s, node_paths) for s in stairs],
         "quality": quality_report(list(floors)),
-        "nodes": [_node(n) for n in nodes],
+        "nodes": [{**_node(n), **labels[n.path]} for n in nodes],
+        "classes": [{"id": c.id, "name": c.name, "group": c.group} for c in class_table()],
         "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
                         for d in scene.all_diagnostics()],
         "checks": _clean({name: {**report.to_dict(), "summary": report.summary()}
                           for name, report in scene.checks.items()}, "checks"),
         "timings": _clean(dict(scene.timings), "timings"),
+        "difficulty": _clean(scene.difficulty.to_dict(), "difficulty")
+        if scene.difficulty is not None else None,
     }
     return _clean(document, "")
 
 
 def scene_json_text(scene: Scene, nodes: Sequence[SceneNode]) -> str:
-    """The document as text: sorted keys, two-space indent, lists of numbers (points)
-    on one line, trailing newline."""
-    text = json.dumps(scene_as_dict(scene, nodes), sort_keys=True, indent=2,
-                      ensure_ascii=False, allow_nan=False)
+    """The document as text (:func:`json_text`)."""
+    return json_text(scene_as_dict(scene, nodes))
+
+
+def json_text(document: Any) -> str:
+    """JSON text as cga writes it: sorted keys, two-space indent, lists of numbers
+    (points, matrix rows) on one line, trailing newline."""
+    text = json.dumps(document, sort_keys=True, indent=2, ensure_ascii=False, allow_nan=False)
     return _NUMBER_LIST.sub(lambda m: "[" + " ".join(m.group(1).split()) + "]", text) + "\n"
 
 
@@ -203,6 +213,7 @@ def _door(plan: FloorPlan, door: Door) -> dict[str, Any]:
         "hinge": door.hinge,
         "front": door.is_front,
         "reason": door.reason,
+        "leaf": door.leaf,
         **_door_joint(plan, door),
     }
 
@@ -230,7 +241,19 @@ def _window(plan: FloorPlan, window: Window) -> dict[str, Any]:
     }
 
 
-def _furniture(plan: FloorPlan, item: FurnitureItem, node_paths: set[str],
+def _node_labels(nodes: Sequence[SceneNode]) -> dict[str, dict[str, Any]]:
+    """Node path → its semantic labels (:mod:`cga.semantics`): class id and name, and
+    instance id."""
+    names = class_names()
+    instances = instance_ids(nodes)
+    out = {}
+    for node in nodes:
+        cid = node_class(node)
+        out[node.path] = {"class_id": cid, "class": names[cid], "instance_id": instances[node.path]}
+    return out
+
+
+def _furniture(plan: FloorPlan, item: FurnitureItem, labels: dict[str, dict[str, Any]],
                leaves: dict[str, SceneNode]) -> dict[str, Any]:
     turns = item.rotation % 4
     x, z = item.position
@@ -254,7 +277,8 @@ def _furniture(plan: FloorPlan, item: FurnitureItem, node_paths: set[str],
         "bbox": bbox,
         "is_detail": item.is_detail,
         "non_collision": item.non_collision,
-        "node": path if path in node_paths else None,
+        "node": path if path in labels else None,
+        **labels.get(path, {"class_id": None, "class": None, "instance_id": None}),
     }
 
 

@@ -25,7 +25,7 @@ from PIL import Image
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
-from .palette import node_color
+from .palette import face_colors
 
 __all__ = ["render_view", "export_view"]
 
@@ -61,14 +61,6 @@ def _cut(mesh: trimesh.Trimesh, height: float) -> trimesh.Trimesh | None:
                            faces=np.asarray(cut.tri_verts), process=False)
 
 
-def _face_colors(node: SceneNode, mesh: trimesh.Trimesh) -> np.ndarray:
-    visual = mesh.visual
-    if isinstance(visual, trimesh.visual.ColorVisuals) and visual.kind is not None \
-            and len(visual.face_colors) == len(mesh.faces):
-        return np.asarray(visual.face_colors[:, :3], dtype=float) / 255.0
-    return np.tile(node_color(node.kind), (len(mesh.faces), 1))
-
-
 def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):
     tris, colors = [], []
     for node in nodes:
@@ -78,7 +70,7 @@ def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):
         if mesh is None or len(mesh.faces) == 0:
             continue
         tris.append(np.asarray(mesh.vertices)[np.asarray(mesh.faces)])
-        colors.append(_face_colors(node, mesh))
+        colors.append(face_colors(mesh, node.kind))
     if not tris:
         return np.zeros((0, 3, 3)), np.zeros((0, 3))
     return np.concatenate(tris), np.concatenate(colors)

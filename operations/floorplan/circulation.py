@@ -157,6 +157,8 @@ def _centre_line(outline: Polygon, spec: CorridorSpec) -> Polygon:
     options = []
     for horizontal in (True, False):
         wings = _slabs(outline, horizontal)
+        if not wings:  # every side shorter than the tolerance: a speck, not a building
+            raise CirculationError("the footprint is too small for a corridor")
         main = max(range(len(wings)), key=lambda i: (_area(wings[i]), -i))
         x0, z0, x1, z1 = wings[main]
         if (x1 - x0 >= z1 - z0) == horizontal or len(wings) == 1:

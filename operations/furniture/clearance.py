@@ -142,8 +142,8 @@ def door_keepouts(plan: FloorPlan, room_id: int) -> list[Keepout]:
     """The keep-out zones of every door of ``room_id`` that lie in that room.
 
     In the room the leaf swings into: the quarter circle swept by the leaf, centred on
-    the hinge at the wall face. In the room on the other side: a door-wide square in
-    front of the opening.
+    the hinge at the wall face. In the room on the other side, and on both sides of a
+    bare opening (``Door.leaf`` False): a door-wide square in front of the opening.
     """
     zones = []
     for door in plan.doors:
@@ -155,7 +155,7 @@ def door_keepouts(plan: FloorPlan, room_id: int) -> list[Keepout]:
         normal = wall.normal_into(room_id)
         face = centre + normal * face_offset(plan, room_id, door.position)
         label = f"door {door.id}"
-        if door.swing_room == room_id:
+        if door.leaf and door.swing_room == room_id:
             towards_latch = along if door.hinge == "start" else -along
             hinge = face - towards_latch * door.width / 2
             quadrant = _rect(hinge, towards_latch * door.width, normal * door.width)

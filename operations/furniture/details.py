@@ -59,12 +59,14 @@ def detail_items(plan: FloorPlan, rules: FurnitureRules) -> list[FurnitureItem]:
     Returns
     -------
     list of FurnitureItem
-        Doors (named ``door<id>``, in the room the leaf swings into, or the inner room of
+        Doors with a leaf (named ``door<id>``, in the room the leaf swings into, or the inner room of
         a door that opens outwards) then windows (``window<id>``), all ``is_detail``.
     """
     types = {room.id: room.type for room in plan.rooms}
     items = []
     for door in plan.doors:
+        if not door.leaf:
+            continue
         room = door.swing_room if door.swing_room != OUTSIDE else next(
             r for r in door.rooms if r != OUTSIDE)
         other = next((r for r in door.rooms if r != room), OUTSIDE)

@@ -137,7 +137,9 @@ def test_furniture_is_placed_inside_rooms_without_overlaps(built):
         for k, a in enumerate(blocking):
             for b in blocking[k + 1:]:
                 overlap = _footprint(a).intersection(_footprint(b)).area
-                assert overlap < 1e-6, f"{a['node']} overlaps {b['node']} by {overlap:.4f} m²"
+                # the JSON rounds positions and sizes to 1e-6 m: items that touch may
+                # overlap on paper by that much times their side (a few 1e-6 m²)
+                assert overlap < 1e-5, f"{a['node']} overlaps {b['node']} by {overlap:.4f} m²"
 
 
 @pytest.mark.physics

@@ -266,6 +266,7 @@ def test_ten_megabyte_csv_header_gives_a_short_error(project):
 
 @pytest.mark.parametrize("old, new, message", [
     ("extrude(buildingHeight)", "extrude(-3)", "extrude height must be positive"),
+    ("extrude(buildingHeight)", "extrude(1e-9)", "below a micrometre"),
     ("wallWidth = 0.2;", "wallWidth = 0;", "wallWidth must be positive"),
     ('repeated_split("Y", floorHeight)', 'repeated_split("Y", 0)',
      "repeated_split size must be positive"),

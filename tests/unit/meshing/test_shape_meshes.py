@@ -92,7 +92,8 @@ def test_glb_nodes_named_by_path_with_extras_and_world_positions():
     assert [doc["nodes"][i]["name"] for i in doc["scenes"][0]["nodes"]] == ["t"]
     assert doc["nodes"][0]["children"] == [1] and doc["nodes"][1]["children"] == [2, 3]
     assert doc["nodes"][2]["extras"] == {"floor": 2, "kind": "mass", "static": True,
-                                         "tags": ["x", "y"]}
+                                         "tags": ["x", "y"], "class": "building",
+                                         "class_id": 8, "instance_id": 1}
     assert all("matrix" not in n for n in doc["nodes"])
     loaded = trimesh.load(io.BytesIO(data), file_type="glb")
     assert sorted(loaded.graph.nodes_geometry) == ["Lot/A[0]", "Lot/B[1]"]
