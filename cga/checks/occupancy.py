@@ -41,6 +41,7 @@ from PIL import Image, ImageDraw
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
+from cga.model import FloorPlan
 from cga.scene import NodeKind, SceneNode
 
 from ._solids import as_manifold
@@ -344,7 +345,8 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
                                   node.item.room if node.item is not None else None,
                                   node.door.door if node.door is not None else None))
         _paint(occupied, footprint, x_min, z_min, resolution)
-    for obstacle in stair_obstacles(plan):
+    # a floor read back from files has its stairs as meshes among the nodes already
+    for obstacle in stair_obstacles(plan) if isinstance(plan, FloorPlan) else ():
         obstacles.append(obstacle)
         _paint(occupied, obstacle.footprint, x_min, z_min, resolution)
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
