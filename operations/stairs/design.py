@@ -163,8 +163,10 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
             corner = np.asarray(a) + d * s
             for deep, hugs in _breadths(free, corner, d, n, length, breadth, min_width,
                                         core.interior_width + 2 * wall):
-                rect = Polygon([corner, corner + d * length, corner + d * length + n * deep,
-                                corner + n * deep])
+                # rounded, so a core flush with a corner meets it exactly (3.01 + 5.39 is
+                # 8.399999999999999 in floating point)
+                rect = Polygon(np.round([corner, corner + d * length,
+                                         corner + d * length + n * deep, corner + n * deep], 9))
                 if any(rect.intersection(c).area > 1e-9 for c in corridors) or not _fits(
                         footprint, free, rect, min_width):
                     continue

@@ -229,7 +229,8 @@ def test_byte_order_marks_are_read(project):
                                       encoding="utf-8")
     assert cli("check", grammar) == (0, "")
     lot = project / "lot.geojson"
-    lot.write_text(BOM + '{"type": "Polygon", "coordinates": [[[0,0],[12,0],[12,9],[0,9],'
+    # the demo's own 14 m x 10 m, read from a GeoJSON file with a byte order mark
+    lot.write_text(BOM + '{"type": "Polygon", "coordinates": [[[0,0],[14,0],[14,10],[0,10],'
                          '[0,0]]]}', encoding="utf-8")
     status, err = cli_forked("build", grammar, "--lot", lot, "--no-physics", "--quiet",
                              "--out", project / "out")
