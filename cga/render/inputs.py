@@ -133,8 +133,7 @@ def inputs_from_files(scene_json: Path) -> RenderInputs:
         if not pieces:
             raise UsageError(f"{glb}: has no node {entry['path']!r}, which {path.name} lists; "
                              f"were they written by different builds?")
-        mesh = pieces[0] if len(pieces) == 1 else trimesh.util.concatenate(
-            [trimesh.Trimesh(p.vertices, p.faces, process=False) for p in pieces])
+        mesh = pieces[0] if len(pieces) == 1 else _joined(pieces)
         colors[entry["path"]] = np.concatenate([surface_colors(p, entry["kind"]) for p in pieces])
         nodes.append(SceneNode(entry["path"], entry["kind"], mesh, static=entry["static"]))
     classes = {e["path"]: int(e["class_id"]) for e in document["nodes"]}
@@ -168,6 +167,14 @@ def _glb_meshes(path: Path, wanted: set[str]) -> dict[str, list[trimesh.Trimesh]
             faces=faces[:, ::-1] if np.linalg.det(matrix[:3, :3]) < 0 else faces,
             visual=mesh.visual, process=False))
     return out
+
+
+def _joined(pieces: list[trimesh.Trimesh]) -> trimesh.Trimesh:
+    """One mesh of several, triangles in order (without their visuals)."""
+    offsets = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
+    return trimesh.Trimesh(np.vstack([p.vertices for p in pieces]),
+                           np.vstack([np.asarray(p.faces) + o for p, o in zip(pieces, offsets)]),
+                           process=False)
 
 
 def _polygon(data: dict[str, Any]) -> Polygon:
