@@ -68,9 +68,11 @@ class RenderInputs:
     surfaces: tuple[Surface, ...]
 
     def floor_surfaces(self, index: int) -> list[Surface]:
-        """The surfaces of one storey seen from above: its nodes but the roof slab."""
-        prefix = f"floor{index}/"
-        return [s for s in self.surfaces if s.path.startswith(prefix) and s.kind != "ceiling"]
+        """The surfaces of one storey seen from above: its nodes but the roof slab, and
+        the storeys below it (seen through a stairwell)."""
+        below = {f"floor{f.index}" for f in self.floors if f.index <= index}
+        return [s for s in self.surfaces
+                if s.path.split("/", 1)[0] in below and s.kind not in ("roof", "ceiling")]
 
 
 def _surfaces(nodes: tuple[SceneNode, ...], classes: dict[str, int], instances: dict[str, int],
