@@ -89,10 +89,11 @@ def furniture_class(model: str) -> int:
     return table.get(("furniture", key), table[("furniture", "furniture")])
 
 
-_KIND_CLASSES = {"wall": "wall", "slab": "floor", "ceiling": "roof", "mass": "building",
-                 "face": "building", "stair": "stair"}
-"""Structure node kind → class. A storey's slab is its floor; the ``ceiling`` node is
-the roof slab over the top storey. (Seen from below, any slab is a ceiling: the
+_KIND_CLASSES = {"wall": "wall", "slab": "floor", "roof": "roof", "ceiling": "roof",
+                 "mass": "building", "face": "building", "stair": "stair", "rail": "railing"}
+"""Structure node kind → class. A storey's slab is its floor; the ``roof`` (or
+``ceiling``) node is the roof slab over the top storey; a stairwell's ``rail`` is a
+railing. (Seen from below, any slab is a ceiling: the
 renderer labels that side ``ceiling`` pixel by pixel, docs/render.md.)"""
 
 

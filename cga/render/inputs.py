@@ -68,18 +68,24 @@ class RenderInputs:
     surfaces: tuple[Surface, ...]
 
     def floor_surfaces(self, index: int) -> list[Surface]:
-        """The surfaces of one storey seen from above: its nodes but the roof slab."""
-        prefix = f"floor{index}/"
-        return [s for s in self.surfaces if s.path.startswith(prefix) and s.kind != "ceiling"]
+        """The surfaces of one storey seen from above: its nodes but the roof slab, and
+        the storeys below it (seen through a stairwell)."""
+        below = {f"floor{f.index}" for f in self.floors if f.index <= index}
+        return [s for s in self.surfaces
+                if s.path.split("/", 1)[0] in below and s.kind not in ("roof", "ceiling")]
 
 
-def _surfaces(nodes: tuple[SceneNode, ...], classes: dict[str, int],
-              instances: dict[str, int]) -> tuple[Surface, ...]:
+def _surfaces(nodes: tuple[SceneNode, ...], classes: dict[str, int], instances: dict[str, int],
+              colors: dict[str, np.ndarray] | None = None) -> tuple[Surface, ...]:
+    """The nodes' labelled surfaces; ``colors`` gives a node's triangle colours when its
+    mesh no longer carries them (joined from a glb's primitives)."""
     if len(nodes) > MAX_INSTANCES:
         raise UsageError(f"the build has {len(nodes)} nodes; instance masks (16-bit) hold "
                          f"at most {MAX_INSTANCES}")
+    colors = colors or {}
     return tuple(Surface(n.path, n.kind, n.mesh, classes[n.path], instances[n.path],
-                         surface_colors(n.mesh, n.kind)) for n in nodes)
+                         colors[n.path] if n.path in colors else surface_colors(n.mesh, n.kind))
+                 for n in nodes)
 
 
 def inputs_from_scene(scene: Scene, nodes: tuple[SceneNode, ...] | list[SceneNode]) -> RenderInputs:
@@ -122,38 +128,55 @@ def inputs_from_files(scene_json: Path) -> RenderInputs:
     if not glb.is_file():
         raise UsageError(f"{glb}: no such file; cga render reads the glb written beside "
                          f"the scene JSON (cga build writes both by default)")
-    meshes = _glb_meshes(glb)
-    nodes = []
+    parts = _glb_meshes(glb, {entry["path"] for entry in document["nodes"]})
+    nodes, colors = [], {}
     for entry in document["nodes"]:
-        mesh = meshes.get(entry["path"])
-        if mesh is None:
+        pieces = parts.get(entry["path"])
+        if not pieces:
             raise UsageError(f"{glb}: has no node {entry['path']!r}, which {path.name} lists; "
                              f"were they written by different builds?")
+        mesh = pieces[0] if len(pieces) == 1 else _joined(pieces)
+        colors[entry["path"]] = np.concatenate([surface_colors(p, entry["kind"]) for p in pieces])
         nodes.append(SceneNode(entry["path"], entry["kind"], mesh, static=entry["static"]))
     classes = {e["path"]: int(e["class_id"]) for e in document["nodes"]}
     instances = {e["path"]: int(e["instance_id"]) for e in document["nodes"]}
     floors = tuple(_floor(f, document["rooms"]) for f in document["floors"])
     node_tuple = tuple(nodes)
     return RenderInputs(str(document["name"]), int(document["seed"]), floors, node_tuple,
-                        _surfaces(node_tuple, classes, instances))
+                        _surfaces(node_tuple, classes, instances, colors))
 
 
-def _glb_meshes(path: Path) -> dict[str, trimesh.Trimesh]:
-    """Every mesh node of a glb in world coordinates, by node name (its path)."""
+def _glb_meshes(path: Path, wanted: set[str]) -> dict[str, list[trimesh.Trimesh]]:
+    """The meshes of a glb in world coordinates, by the node path (glTF node name) they
+    belong to: a node's own mesh or, for a mesh of several primitives (which trimesh loads
+    as child frames, one per primitive), each primitive."""
     loaded: Any
     try:
         loaded = trimesh.load(path, force="scene")
     except Exception as error:  # trimesh raises many types for a damaged file
         raise UsageError(f"{path}: cannot read the glb ({type(error).__name__}: {error})") from None
-    out = {}
+    parents = loaded.graph.transforms.parents
+    out: dict[str, list[trimesh.Trimesh]] = {}
     for name in loaded.graph.nodes_geometry:
+        owner = name if name in wanted else parents.get(name)
+        if owner not in wanted:
+            continue
         matrix, geometry = loaded.graph[name]
         mesh = loaded.geometry[geometry]
-        out[name] = trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
-                                    faces=np.asarray(mesh.faces)[:, ::-1]
-                                    if np.linalg.det(matrix[:3, :3]) < 0 else mesh.faces,
-                                    visual=mesh.visual, process=False)
+        faces = np.asarray(mesh.faces)
+        out.setdefault(owner, []).append(trimesh.Trimesh(
+            vertices=trimesh.transform_points(mesh.vertices, matrix),
+            faces=faces[:, ::-1] if np.linalg.det(matrix[:3, :3]) < 0 else faces,
+            visual=mesh.visual, process=False))
     return out
+
+
+def _joined(pieces: list[trimesh.Trimesh]) -> trimesh.Trimesh:
+    """One mesh of several, triangles in order (without their visuals)."""
+    offsets = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
+    return trimesh.Trimesh(np.vstack([p.vertices for p in pieces]),
+                           np.vstack([np.asarray(p.faces) + o for p, o in zip(pieces, offsets)]),
+                           process=False)
 
 
 def _polygon(data: dict[str, Any]) -> Polygon:

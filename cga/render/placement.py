@@ -1,13 +1,16 @@
 """Where the cameras stand: seeded poses in the reachable free space of every room.
 
 A robot's camera can only be where the robot can drive. Per floor this takes the
-navigability check's occupancy grid (:func:`cga.checks.occupancy.occupancy_grid`: walls
-and solid furniture in the robot's height band), with every door open as a robot
-opening doors sees the building, keeps the cells at least the robot's radius from any
-obstacle and, of those, the largest connected piece of the floor: the space a robot
-that entered the floor can reach. A room's candidate cells are that space within the
+navigability check's occupancy grid (:func:`cga.checks.occupancy.occupancy_grid`: walls,
+solid furniture and door leaves in the robot's height band), finds the largest piece of
+the floor a robot that opens doors can drive through (cells at least the robot's radius
+from any obstacle but the door leaves) and keeps its cells that are that far from the
+door leaves too, where the build leaves them: the space a robot that entered the floor
+can reach. A room's candidate cells are that space within the
 room's interior; each camera stands at a cell drawn from them (its point drawn uniformly
-in the cell), at eye height above the walking surface, turned to a uniform yaw.
+in the cell), at eye height above the walking surface, level, turned into the open
+(:func:`open_yaw`: a random direction among those with a long free run, not the wall
+beside the camera).
 
 Draws come from the build's random streams (:func:`cga.randomness.stream`) keyed by
 floor and room, so the same seed gives the same poses and a room's poses do not
@@ -32,7 +35,7 @@ from cga.randomness import stream
 from .cameras import Camera, look_level, orthographic_down, perspective
 from .inputs import FloorOutline, RenderInputs
 
-__all__ = ["MAX_PIXELS", "MAX_VIEWS_PER_ROOM", "RenderOptions", "floor_grid", "reachable_cells", "room_cameras", "top_camera",
+__all__ = ["MAX_PIXELS", "MAX_VIEWS_PER_ROOM", "RenderOptions", "open_yaw", "floor_grid", "reachable_cells", "room_cameras", "top_camera",
            "cell_centres", "room_map"]
 
 
@@ -82,25 +85,33 @@ class RenderOptions:
 
 
 def floor_grid(floor: FloorOutline, inputs: RenderInputs, options: RenderOptions) -> OccupancyGrid:
-    """The floor's occupancy grid with every door open, laid out as the ROS map
-    (:mod:`cga.export.rosmap`: the same margin, so with the default resolution the same
-    origin, cells and size)."""
-    return occupancy_grid(floor, inputs.nodes, resolution=options.map_resolution,
-                          include_doors=False)
+    """The floor's occupancy grid, the ROS map's (:mod:`cga.export.rosmap`: the same
+    margin, so with the default resolution the same origin, cells and size; door leaves
+    where the build leaves them)."""
+    return occupancy_grid(floor, inputs.nodes, resolution=options.map_resolution)
+
+
+def _clear(blocked: np.ndarray, resolution: float, radius: float) -> np.ndarray:
+    """Cells whose centre is at least ``radius`` from every blocked cell's edge."""
+    if not blocked.any():
+        return np.ones(blocked.shape, dtype=bool)
+    return ndimage.distance_transform_edt(~blocked) * resolution - resolution / 2 >= radius
 
 
 def reachable_cells(grid: OccupancyGrid, radius: float) -> np.ndarray:
     """``bool[rows, cols]``: cells inside the footprint at least ``radius`` from every
-    obstacle, in the largest connected piece of them."""
-    blocked = grid.occupied | ~grid.free_mask
-    clear = ndimage.distance_transform_edt(~blocked) * grid.resolution - grid.resolution / 2
-    drivable = clear >= radius
+    obstacle (door leaves included, where they stand), in the largest piece of the floor
+    a robot that opens doors can drive through."""
+    outside = ~grid.free_mask
+    doors_open = grid.occupied_by(o.path for o in grid.obstacles if o.door is None)
+    drivable = _clear(doors_open | outside, grid.resolution, radius)
     labels, count = ndimage.label(drivable)
     if count == 0:
         return drivable
     sizes = np.bincount(labels.ravel())
     sizes[0] = 0
-    return labels == int(np.argmax(sizes))
+    return (labels == int(np.argmax(sizes))) & _clear(grid.occupied | outside, grid.resolution,
+                                                        radius)
 
 
 def room_cameras(floor: FloorOutline, grid: OccupancyGrid, reachable: np.ndarray,
@@ -125,11 +136,39 @@ def room_cameras(floor: FloorOutline, grid: OccupancyGrid, reachable: np.ndarray
             jitter = rng.uniform(-0.5, 0.5, size=2) * grid.resolution
             x, z = grid.cell_to_world(row, col)
             position = np.array([x + jitter[0], floor.floor_y + options.eye_height, z + jitter[1]])
-            yaw = float(rng.uniform(0.0, 2 * math.pi))
+            yaw = open_yaw(grid, position[0], position[2], rng)
             cameras.append(perspective(f"floor{floor.index}_room{room.id}_{k}", options.width,
                                        options.height, options.fov, look_level(position, yaw),
                                        floor=floor.index, room=room.id))
     return cameras, without
+
+
+_YAW_CANDIDATES = 16
+_REACH = 15.0
+"""How far (m) :func:`open_yaw` looks along a direction."""
+
+
+def open_yaw(grid: OccupancyGrid, x: float, z: float, rng: np.random.Generator) -> float:
+    """A yaw (radians, as :func:`cga.render.cameras.look_level` takes it) that looks into
+    the open: of :data:`_YAW_CANDIDATES` evenly spaced directions at a random offset, one
+    drawn among those whose free run on the grid (to the first obstacle or the
+    footprint's edge) is at least half the longest, so a camera does not stare at the
+    wall beside it."""
+    spacing = 2 * math.pi / _YAW_CANDIDATES
+    yaws = rng.uniform(0.0, 2 * math.pi) + np.arange(_YAW_CANDIDATES) * spacing
+    steps = np.arange(1, int(_REACH / (grid.resolution / 2)) + 1) * (grid.resolution / 2)
+    # look_level's forward at yaw θ is (−sin θ, −cos θ) in plan (x, z)
+    px = x - np.sin(yaws)[:, None] * steps
+    pz = z - np.cos(yaws)[:, None] * steps
+    rows = np.floor((pz - grid.z_min) / grid.resolution).astype(int)
+    cols = np.floor((px - grid.x_min) / grid.resolution).astype(int)
+    inside = (rows >= 0) & (rows < grid.shape[0]) & (cols >= 0) & (cols < grid.shape[1])
+    rows, cols = np.clip(rows, 0, grid.shape[0] - 1), np.clip(cols, 0, grid.shape[1] - 1)
+    stop = ~inside | grid.occupied[rows, cols] | ~grid.free_mask[rows, cols]
+    first = np.where(stop.any(axis=1), stop.argmax(axis=1), len(steps))
+    free = first * (grid.resolution / 2)
+    open_enough = np.flatnonzero(free >= free.max() / 2)
+    return float(yaws[open_enough[rng.integers(len(open_enough))]] % (2 * math.pi))
 
 
 def top_camera(floor: FloorOutline, grid: OccupancyGrid, oversample: int, name: str) -> Camera:

@@ -79,7 +79,7 @@ class RayScene:
             normals = _unit_normals(v, f)
             keep = np.any(normals != 0.0, axis=1)  # degenerate triangles cannot be hit
             face_class = np.full(len(f), surface.class_id, dtype=np.uint16)
-            if surface.kind in ("slab", "ceiling"):
+            if surface.kind in ("slab", "roof", "ceiling"):
                 face_class[normals[:, 1] < _CEILING_SIDE] = ceiling
             vertices.append(v)
             faces.append(f[keep] + offset)

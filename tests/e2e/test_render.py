@@ -116,7 +116,7 @@ def test_depth_of_wall_pixels_reprojects_onto_the_walls_within_two_centimetres(h
             continue
         pick = np.linspace(0, len(rows) - 1, min(len(rows), 4000)).astype(int)
         points = pixel_points(images, rows[pick], cols[pick])
-        distance = wall_surface_distance(points, doc, view["floor"])
+        distance = wall_surface_distance(points, doc)
         assert np.max(distance) <= 0.02, view["name"]
         checked += len(pick)
     assert checked > 10_000

@@ -51,16 +51,18 @@ def _inward(wall: dict, footprint: Polygon) -> np.ndarray:
     return normal if footprint.contains(Point(*(middle + normal * 0.05))) else -normal
 
 
-def wall_surface_distance(points: np.ndarray, document: dict, floor: int) -> np.ndarray:
-    """Distance of each world point to the nearest visible face of a wall of ``floor``:
-    a long face, or the reveal, sill or head of an opening, of a wall whose solid
-    (grown by 5 cm) holds the point; inf when no wall's solid is near it."""
-    plan = next(f for f in document["floors"] if f["index"] == floor)
-    footprint = Polygon(plan["footprint"]["exterior"], plan["footprint"]["holes"])
-    y0, top = plan["floor_y"], plan["elevation"] + plan["height"]
+def wall_surface_distance(points: np.ndarray, document: dict) -> np.ndarray:
+    """Distance of each world point to the nearest visible face of a wall of any floor
+    (a camera may see the storey below through a stairwell): a long face, or the reveal,
+    sill or head of an opening, of a wall whose solid (grown by 5 cm) holds the point;
+    inf when no wall's solid is near it."""
+    plans = {f["index"]: f for f in document["floors"]}
     best = np.full(len(points), np.inf)
     grow = 0.05
-    for wall in (w for w in document["walls"] if w["floor"] == floor):
+    for wall in document["walls"]:
+        plan = plans[wall["floor"]]
+        footprint = Polygon(plan["footprint"]["exterior"], plan["footprint"]["holes"])
+        y0, top = plan["floor_y"], plan["elevation"] + plan["height"]
         start, end = np.array(wall["start"]), np.array(wall["end"])
         u = (end - start) / wall["length"]
         t = wall["thickness"]
@@ -84,15 +86,23 @@ def wall_surface_distance(points: np.ndarray, document: dict, floor: int) -> np.
     return best
 
 
+def _stands_on_the_floor(path: str, floor: int) -> bool:
+    """Furniture (``…/furniture/…``) and stairs (``floor{i}/stair{k}``,
+    ``floor{i}/stairwell{k}/rail``) of ``floor``, by node path."""
+    parts = path.split("/")
+    return parts[0] == f"floor{floor}" and (
+        "furniture" in parts or any(p.startswith("stair") for p in parts[1:]))
+
+
 def furniture_shadows(glb: Path, floor: int) -> shapely.Geometry:
-    """The union of the plan shadows (x, z) of every triangle of the furniture nodes of
-    ``floor`` in a build's glb (node names are node paths), read with trimesh."""
+    """The union of the plan shadows (x, z) of every triangle of the furniture and stair
+    nodes of ``floor`` in a build's glb (node names are node paths), read with trimesh."""
     import trimesh
 
     scene = trimesh.load(glb, force="scene")
     triangles = []
     for name in scene.graph.nodes_geometry:
-        if not (name.startswith(f"floor{floor}/") and "/furniture/" in name):
+        if not _stands_on_the_floor(name, floor):
             continue
         matrix, geometry = scene.graph[name]
         mesh = scene.geometry[geometry]
@@ -110,7 +120,8 @@ def floor_pixel_areas(view: dict, document: dict, floor_class: int,
                       shadows: shapely.Geometry) -> dict[int, tuple[float, float]]:
     """Room id → (floor-class pixel area, free floor area) for the rooms of an
     orthographic top-down view: the free area is the room's interior minus the
-    furniture's ``shadows`` (:func:`furniture_shadows`)."""
+    furniture's and stairs' ``shadows`` (:func:`furniture_shadows`) and minus the
+    stairwell, the hole in the floor's slab (``floors[].stairwell``)."""
     camera = view["camera"]
     assert camera["projection"] == "orthographic"
     k = camera["intrinsics"]
@@ -121,6 +132,10 @@ def floor_pixel_areas(view: dict, document: dict, floor_class: int,
     world = local @ matrix[:3, :3].T + matrix[:3, 3]
     pixel_area = 1.0 / (k["fx"] * k["fy"])
     is_floor = view["semantic"] == floor_class
+    plan = next(f for f in document["floors"] if f["index"] == camera["floor"])
+    well = plan.get("stairwell")
+    if well:
+        shadows = shapely.union(shadows, Polygon(well["exterior"], well["holes"]))
     out = {}
     for room in (r for r in document["rooms"] if r["floor"] == camera["floor"]):
         interior = Polygon(room["interior"]["exterior"], room["interior"]["holes"])

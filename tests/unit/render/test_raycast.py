@@ -104,3 +104,19 @@ def test_camera_options_are_checked():
         perspective("v", 4, 3, 180.0, np.eye(4), floor=0, room=None)
     with pytest.raises(ValueError, match="image size"):
         perspective("v", 0, 3, 60.0, np.eye(4), floor=0, room=None)
+
+
+def test_cameras_look_along_a_corridor_not_into_its_wall():
+    from cga.checks.occupancy import OccupancyGrid
+    from cga.render.placement import open_yaw
+
+    # a 10 m × 1 m corridor (0.05 m cells) walled all round, the camera near one wall
+    occupied = np.zeros((20, 200), dtype=bool)
+    occupied[[0, -1], :] = True
+    occupied[:, [0, -1]] = True
+    grid = OccupancyGrid(occupied=occupied, free_mask=np.ones_like(occupied),
+                         origin=(0.0, -1.0), resolution=0.05, floor=0, band=(0.05, 1.2))
+    for seed in range(20):
+        yaw = open_yaw(grid, 5.0, 0.3, np.random.default_rng(seed))
+        forward = look_level(np.zeros(3), yaw)[:3, 2]
+        assert abs(forward[0]) > 0.95  # along the corridor (x), either way
