@@ -134,12 +134,16 @@ def floor_pixel_areas(view: dict, document: dict, floor_class: int,
     is_floor = view["semantic"] == floor_class
     plan = next(f for f in document["floors"] if f["index"] == camera["floor"])
     well = plan.get("stairwell")
+    # through the stairwell the view sees the storey below (the floor in a U stair's well)
+    below = np.zeros(rows.shape, dtype=bool)
     if well:
-        shadows = shapely.union(shadows, Polygon(well["exterior"], well["holes"]))
+        hole = Polygon(well["exterior"], well["holes"])
+        shadows = shapely.union(shadows, hole)
+        below = shapely.contains_xy(hole, world[..., 0], world[..., 2])
     out = {}
     for room in (r for r in document["rooms"] if r["floor"] == camera["floor"]):
         interior = Polygon(room["interior"]["exterior"], room["interior"]["holes"])
         free = interior.difference(shadows)
-        inside = shapely.contains_xy(interior, world[..., 0], world[..., 2])
+        inside = shapely.contains_xy(interior, world[..., 0], world[..., 2]) & ~below
         out[room["id"]] = (float((inside & is_floor).sum()) * pixel_area, float(free.area))
     return out
