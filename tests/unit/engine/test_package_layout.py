@@ -64,3 +64,22 @@ def test_only_intended_subpackages_import_from_a_checkout(tmp_path):
     assert out["operations"] == str(root / "operations" / "__init__.py")
     assert out["rules"] == str(root / "rules")
     assert out["models"] == str(root / "models")
+
+
+def test_every_package_folder_is_installed():
+    """pyproject.toml lists the packages a (non-editable) install copies; a folder with an
+    ``__init__.py`` missing from the list works in a checkout and is absent once installed."""
+    import tomllib
+
+    project = tomllib.loads((REPO / "pyproject.toml").read_text(encoding="utf-8"))
+    setuptools = project["tool"]["setuptools"]
+    listed = set(setuptools["packages"])
+    folders = {name: REPO / path for name, path in setuptools["package-dir"].items()}
+    found = set()
+    for name, folder in folders.items():
+        for init in folder.rglob("__init__.py"):
+            if "__pycache__" in init.parts:
+                continue
+            parts = init.parent.relative_to(folder).parts
+            found.add(".".join((name, *parts)))
+    assert sorted(found - listed) == []
