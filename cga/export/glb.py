@@ -98,8 +98,25 @@ def _local_mesh(node: SceneNode, pivot: np.ndarray) -> Any:
     inverse = np.linalg.inv(pivot)
     vertices = np.asarray(source.vertices, dtype=float) @ inverse[:3, :3].T + inverse[:3, 3]
     # micrometre grid: instances of one model land on identical local vertices
-    return trimesh.Trimesh(vertices=np.round(vertices, 6) + 0.0, faces=np.asarray(source.faces),
+    mesh = trimesh.Trimesh(vertices=np.round(vertices, 6) + 0.0, faces=np.asarray(source.faces),
                            visual=visual, process=False)
+    _give_every_vertex_a_normal(mesh)
+    return mesh
+
+
+def _give_every_vertex_a_normal(mesh: Any) -> None:
+    """Replace averaged vertex normals of (nearly) zero length by the normal of one of
+    the vertex's faces. A vertex where faces facing opposite ways meet (a stair's tread
+    edge on its landing) averages to nothing, which glTF forbids (the Khronos validator's
+    ACCESSOR_VECTOR3_NON_UNIT)."""
+    if len(mesh.faces) == 0:
+        return
+    normals = np.array(mesh.vertex_normals)
+    flat = np.linalg.norm(normals, axis=1) < 0.5
+    if flat.any():
+        first_face = mesh.vertex_faces[flat, 0]
+        normals[flat] = mesh.face_normals[np.maximum(first_face, 0)]
+        mesh.vertex_normals = normals
 
 
 def _mesh_key(mesh: Any) -> str:
