@@ -114,7 +114,7 @@ def type_floor(plan: FloorPlan, rules_path: str | Path, *, seed: int = 0, strict
 
 def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: float = 1.0,
                   steering_iterations: int = 10, clearance_tries: int = 20,
-                  passage_width: float = PASSAGE_WIDTH,
+                  passage_width: float = PASSAGE_WIDTH, disorder: float = 0.0,
                   library: ModelLibrary | None = None) -> FloorPlan:
     """Furnish a typed floor as ``add_furniture`` does in a grammar.
 
@@ -133,6 +133,8 @@ def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: f
         As the operation's ``steeringIterations`` and ``clearanceTries``.
     passage_width:
         As the operation's ``passage_width``, in metres (not scaled by ``units``).
+    disorder:
+        As the operation's ``disorder``: noise in [0, 1] on the movable items' poses.
     library:
         The models; default: the shipped ones.
 
@@ -147,13 +149,15 @@ def furnish_floor(plan: FloorPlan, rules: str | Path, *, seed: int = 0, units: f
     ResourceNotFoundError, RuleTableError
         The table or one of its models does not exist, or the table is malformed.
     UsageError
-        ``passage_width`` is negative.
+        ``passage_width`` is negative or ``disorder`` is outside [0, 1].
     """
     if passage_width < 0:
         raise UsageError(f"passage_width must not be negative, got {passage_width:g}")
+    if not 0 <= disorder <= 1:
+        raise UsageError(f"disorder must be in [0, 1], got {disorder:g}")
     table = load_furniture_rules(resolve_resource(rules, "rules"))
     return furnish(plan, table, library or default_library(), np.random.default_rng(seed),
-                   units, steering_iterations, clearance_tries, passage_width)
+                   units, steering_iterations, clearance_tries, passage_width, disorder)
 
 
 def _rooms(plan: FloorPlan, ref: RoomRef) -> list[int]:

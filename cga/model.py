@@ -14,8 +14,9 @@ Frames and conventions (docs/architecture.md, "Units and frames"):
   solid lies inside the footprint. Openings are positioned by the distance of their
   centre from ``start``.
 * Furniture ``rotation`` is a number of quarter turns about +y; at rotation 0 the item's
-  front faces −z. :func:`front_vector` and :func:`rotation_matrix` are the one source of
-  this convention.
+  front faces −z. An item's ``yaw`` (radians, same sense) turns it further by a free
+  angle (the disorder of chairs, docs/furniture.md). :func:`front_vector` and
+  :func:`rotation_matrix` are the one source of this convention.
 """
 
 from __future__ import annotations
@@ -263,23 +264,33 @@ class Window:
     sill: float
 
 
-def rotation_matrix(quarter_turns: int) -> np.ndarray:
-    """3×3 rotation about +y by ``quarter_turns`` × 90° (right-handed), exact integers."""
-    c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][quarter_turns % 4]
+def rotation_matrix(quarter_turns: int, yaw: float = 0.0) -> np.ndarray:
+    """3×3 rotation about +y by ``quarter_turns`` × 90° plus ``yaw`` radians
+    (right-handed); exact integers when ``yaw`` is 0."""
+    c: float
+    s: float
+    if yaw == 0.0:
+        c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][quarter_turns % 4]
+    else:
+        angle = (quarter_turns % 4) * math.pi / 2 + yaw
+        c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]], dtype=float)
 
 
-def front_vector(quarter_turns: int) -> tuple[float, float]:
+def front_vector(quarter_turns: int, yaw: float = 0.0) -> tuple[float, float]:
     """The item's front direction in plan ``(x, z)`` for a rotation (0 → (0, −1))."""
-    v = rotation_matrix(quarter_turns) @ np.array([0.0, 0.0, -1.0])
+    v = rotation_matrix(quarter_turns, yaw) @ np.array([0.0, 0.0, -1.0])
     return (float(v[0]), float(v[2]))
 
 
 @dataclass(frozen=True)
 class FurnitureItem:
-    """A placed item. ``size`` is the model's (width x, height y, depth z) before rotation;
-    ``position`` the centre of its footprint on the walking surface. ``elevation`` lifts
-    the model's origin above the walking surface (a window item: its opening's sill)."""
+    """A placed item. ``size`` is the model's (width x, height y, depth z) before rotation
+    (a jittered item's own size, docs/furniture.md); ``position`` the centre of its
+    footprint on the walking surface. ``elevation`` lifts the model's origin above the
+    walking surface (a window item: its opening's sill). ``yaw`` turns the item by a free
+    angle (radians, right-handed about +y) beyond its ``rotation`` quarter turns: the
+    disorder of movable items; 0 for everything the solver places by its rules."""
 
     name: str
     model: str
@@ -294,16 +305,24 @@ class FurnitureItem:
     door: int | None = None
     """The id of the door this item is the leaf of (``detail_items``); its pose then
     comes from the door's hinge and angle (:mod:`cga.doors`), not from ``rotation``."""
+    yaw: float = 0.0
 
     @property
     def front(self) -> tuple[float, float]:
-        return front_vector(self.rotation)
+        return front_vector(self.rotation, self.yaw)
+
+    @property
+    def heading(self) -> float:
+        """The item's whole turn about +y in radians: quarter turns plus ``yaw``."""
+        return (self.rotation % 4) * math.pi / 2 + self.yaw
 
     def footprint(self) -> Polygon:
         """The item's rectangle in plan, rotated and placed."""
         w, _, d = self.size
         rect = box(-w / 2, -d / 2, w / 2, d / 2)
         rect = affinity.rotate(rect, -90 * (self.rotation % 4), origin=(0, 0))
+        if self.yaw:
+            rect = affinity.rotate(rect, -self.yaw, origin=(0, 0), use_radians=True)
         return affinity.translate(rect, *self.position)
 
 

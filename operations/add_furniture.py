@@ -64,6 +64,11 @@ class AddFurniture(Operation):
         switches the rule off. An item that would cut a door off, or wall off more than
         15 % of the floor a robot can reach, stands elsewhere or is left out
         (:mod:`cga.operations.furniture.passage`).
+    disorder (keyword):
+        Noise in [0, 1] (default 0: tidy) turning and shifting the movable items
+        (the chairs, or the rows marked ``isMovable``) off their tidy pose, each
+        disturbed pose checked like any other (:mod:`cga.operations.furniture.disorder`;
+        the TFG's chair noise, 0.4 in its robot runs).
 
     Every item that cannot be placed is left out with a warning naming the item, the
     room and the reason; the warnings travel on the floor plan's ``diagnostics``.
@@ -83,6 +88,8 @@ class AddFurniture(Operation):
               doc="solves per room from new random starts while items are left out"),
         Param("passage_width", "length", default=PASSAGE_WIDTH, keyword_only=True,
               doc="free passage kept between each room's doors (default 0.6 m; 0: none)"),
+        Param("disorder", "number", default=0.0, keyword_only=True,
+              doc="noise in [0, 1] on the poses of movable items such as chairs (0: tidy)"),
     )
     doc = ("add_furniture(rules.csv, wallWidth>windowWidth>windowHigh, doorWidth, doorHeight, "
            "steeringIterations, clearanceTries): furnish every typed room of the floor")
@@ -92,6 +99,10 @@ class AddFurniture(Operation):
         if is_number(passage) and not passage >= 0:
             raise DerivationError(f"passage_width must not be negative, got {passage / units:g}",
                                   hint="use 0 to switch the passage rule off")
+        disorder = args["disorder"]
+        if is_number(disorder) and not 0 <= disorder <= 1:
+            raise DerivationError(f"disorder must be in [0, 1], got {disorder:g}",
+                                  hint="0 keeps every item tidy, 1 is the most disorder")
         if is_number(steering) and steering > MAX_STEERING_ITERATIONS:
             raise DerivationError(
                 f"steeringIterations must be at most {MAX_STEERING_ITERATIONS:,}, got "
@@ -119,20 +130,20 @@ class AddFurniture(Operation):
         path = Path(ctx.resolve(args["rules"], "rules"))
         furnished = furnish(plan, _rules(ctx, path), _library(ctx), ctx.rng, ctx.units,
                             args["steeringIterations"], args["clearanceTries"],
-                            args["passage_width"])
+                            args["passage_width"], args["disorder"])
         return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=furnished)]
 
 
 def furnish(plan: FloorPlan, rules: FurnitureRules, library: ModelLibrary,
             rng: np.random.Generator, units: float, steering_iterations: int,
-            clearance_tries: int, passage_width: float) -> FloorPlan:
+            clearance_tries: int, passage_width: float, disorder: float = 0.0) -> FloorPlan:
     """``plan`` with furniture from a parsed table (every model must be in ``library``);
     the operation and :func:`cga.authoring.furnish_floor` both call this."""
     models = _models(rules, library)
     furniture, diagnostics = furnish_plan(plan, rules.scaled(units), models, rng,
                                           steering_iterations=steering_iterations,
                                           attempts=clearance_tries,
-                                          passage_width=passage_width)
+                                          passage_width=passage_width, disorder=disorder)
     for item in furniture:
         if item.is_detail:
             library.get(item.model)

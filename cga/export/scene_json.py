@@ -253,6 +253,16 @@ def _node_labels(nodes: Sequence[SceneNode]) -> dict[str, dict[str, Any]]:
     return out
 
 
+def _yaw_degrees(item: FurnitureItem) -> float:
+    """The item's whole turn in degrees, in [0, 360): its quarter turns plus its free
+    ``yaw`` (a disordered chair)."""
+    turns = item.rotation % 4
+    if not item.yaw:
+        return 90.0 * turns
+    degrees = math.degrees(item.heading) % 360.0
+    return 0.0 if degrees >= 360.0 else degrees
+
+
 def _furniture(plan: FloorPlan, item: FurnitureItem, labels: dict[str, dict[str, Any]],
                leaves: dict[str, SceneNode]) -> dict[str, Any]:
     turns = item.rotation % 4
@@ -271,7 +281,8 @@ def _furniture(plan: FloorPlan, item: FurnitureItem, labels: dict[str, dict[str,
         "door": item.door,
         "model": item.model,
         "parent": item.parent,
-        "pose": {"position": [x, y, z], "yaw_degrees": 90.0 * turns, "quarter_turns": turns},
+        "pose": {"position": [x, y, z], "yaw_degrees": _yaw_degrees(item),
+                 "quarter_turns": turns},
         "size": list(item.size),
         "front": list(item.front),
         "bbox": bbox,

@@ -24,8 +24,8 @@ def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -
     """4×4 matrix taking ``model``'s frame to the world pose of ``item``.
 
     The model is scaled per axis to ``item.size`` (when that differs from the model's
-    size, e.g. a door leaf sized to its opening), turned by ``item.rotation`` quarter
-    turns about +y and moved to ``(x, floor_y + item.elevation, z)``.
+    size, e.g. a door leaf sized to its opening, or a jittered item), turned by
+    ``item.rotation`` quarter turns plus ``item.yaw`` about +y and moved to ``(x, floor_y + item.elevation, z)``.
 
     Raises
     ------
@@ -39,7 +39,7 @@ def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -
     own = np.asarray(model.size, dtype=float)
     scale = np.where(np.abs(target - own) <= _SIZE_TOLERANCE, 1.0, target / own)
     matrix = np.eye(4)
-    matrix[:3, :3] = rotation_matrix(item.rotation) @ np.diag(scale)
+    matrix[:3, :3] = rotation_matrix(item.rotation, item.yaw) @ np.diag(scale)
     matrix[:3, 3] = (item.position[0], floor_y + item.elevation, item.position[1])
     return matrix
 

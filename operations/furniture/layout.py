@@ -31,19 +31,19 @@ share an edge and a wall item may stand flush against its wall.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
 import shapely
-from shapely import STRtree
+from shapely import STRtree, affinity
 from shapely.geometry import Polygon
 
 from .clearance import Box, EnvelopePart, Keepout, OpeningStrip, envelope
 from .passage import Passage
 from .rules import FurnitureRule
 
-__all__ = ["EPS", "ItemSpec", "Pose", "Conflict", "Layout", "nearest_in"]
+__all__ = ["EPS", "ItemSpec", "Pose", "Conflict", "Layout", "body_polygon", "nearest_in"]
 
 EPS = 1e-6
 """Boxes are shrunk by this much (m) before intersection tests: touching is not overlap."""
@@ -86,16 +86,18 @@ def _envelope(width: float, depth: float, rotation: int, front: float, back: flo
 
 @dataclass(frozen=True)
 class Pose:
-    """Where an item stands: the centre of its footprint and its quarter turns."""
+    """Where an item stands: the centre of its footprint, its quarter turns and a free
+    ``yaw`` beyond them (radians, right-handed about +y; only the disorder of movable
+    items sets it, :mod:`.disorder`)."""
 
     x: float
     z: float
     rotation: int
+    yaw: float = 0.0
 
     def moved(self, axis: int, value: float) -> "Pose":
         """A copy with the centre coordinate ``axis`` (0 = x, 1 = z) set to ``value``."""
-        return Pose(value, self.z, self.rotation) if axis == 0 else Pose(self.x, value,
-                                                                          self.rotation)
+        return replace(self, x=value) if axis == 0 else replace(self, z=value)
 
 
 @dataclass(frozen=True)
@@ -149,10 +151,34 @@ def _part_boxes(parts: tuple[EnvelopePart, ...], x: float, z: float) -> np.ndarr
     return shapely.box(b[:, 0], b[:, 1], b[:, 2], b[:, 3])
 
 
+def _part_shapes(parts: tuple[EnvelopePart, ...], pose: Pose) -> np.ndarray:
+    """The parts placed at ``pose`` (shrunk by :data:`EPS`), turned by its free yaw about
+    the item's centre (the sense of :meth:`cga.model.FurnitureItem.footprint`)."""
+    boxes = _part_boxes(parts, pose.x, pose.z)
+    if not pose.yaw:
+        return boxes
+    return np.array([affinity.rotate(b, -pose.yaw, origin=(pose.x, pose.z), use_radians=True)
+                     for b in boxes], dtype=object)
+
+
 def _footprint(parts: tuple[EnvelopePart, ...], pose: Pose) -> Box:
-    """The body box of ``parts`` placed at ``pose``, exact."""
+    """The body box of ``parts`` placed at ``pose``, exact; for a pose with a free yaw,
+    the bounds of the turned body (the passage rule then sees a slightly larger
+    obstacle, never a smaller one)."""
     b = parts[0].box
+    if pose.yaw:
+        minx, minz, maxx, maxz = _part_shapes(parts[:1], pose)[0].bounds
+        return (minx - EPS, minz - EPS, maxx + EPS, maxz + EPS)
     return (pose.x + b[0], pose.z + b[1], pose.x + b[2], pose.z + b[3])
+
+
+def body_polygon(spec: ItemSpec, pose: Pose) -> Polygon:
+    """The exact footprint of ``spec`` at ``pose`` (turned by its free yaw)."""
+    b = spec.parts(pose.rotation)[0].box
+    body = shapely.box(pose.x + b[0], pose.z + b[1], pose.x + b[2], pose.z + b[3])
+    if pose.yaw:
+        body = affinity.rotate(body, -pose.yaw, origin=(pose.x, pose.z), use_radians=True)
+    return body
 
 
 def _outside_pieces(interior: Polygon, margin: float = 1.0) -> list[Polygon]:
@@ -216,8 +242,8 @@ class Layout:
             self._footprints[spec.name] = _footprint(parts, pose)
             self._item_entries[spec.name] = [
                 _Entry("body" if part.is_body else "clearance", spec.name, geometry,
-                       shapely.bounds(geometry).tolist())
-                for part, geometry in zip(parts, _part_boxes(parts, pose.x, pose.z))]
+                       _rectangle(geometry) if pose.yaw else shapely.bounds(geometry).tolist())
+                for part, geometry in zip(parts, _part_shapes(parts, pose))]
         self._tree = None
 
     def remove(self, name: str) -> tuple[ItemSpec, Pose]:
@@ -274,7 +300,7 @@ class Layout:
         """
         entries, tree = self._index()
         parts = spec.parts(pose.rotation)
-        geometries = _part_boxes(parts, pose.x, pose.z)
+        geometries = _part_shapes(parts, pose)
         found: list[Conflict] = []
         hits = tree.query(geometries, predicate="intersects")
         for part_index, entry_index in sorted(zip(*hits), key=lambda h: (h[1], h[0])):

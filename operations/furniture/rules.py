@@ -24,6 +24,10 @@ Meaning of the columns beyond the thesis' own words:
   its wall instead of its back (a bed with its long side on the wall).
 * Distances are in grammar units; :meth:`FurnitureRules.scaled` converts them to metres.
 
+Optional columns beyond the thesis: ``sizeJitter`` (one fraction, or three for width,
+height and depth, by which each placed item's extents vary; :mod:`.variation`) and
+``isMovable`` (whether disorder may move the item; empty: the chairs; :mod:`.disorder`).
+
 Errors are :class:`~cga.errors.RuleTableError` naming the file, row and column.
 """
 
@@ -40,7 +44,7 @@ from pathlib import Path
 from cga.errors import BudgetError, RuleTableError, excerpt
 from cga.textfiles import MAX_NAME_LENGTH, control_character, read_table_text
 
-__all__ = ["MAX_FURNITURE_ROWS", "FurnitureRule", "FurnitureRules", "parse_furniture_rules",
+__all__ = ["MAX_FURNITURE_ROWS", "MAX_SIZE_JITTER", "FurnitureRule", "FurnitureRules", "parse_furniture_rules",
            "load_furniture_rules"]
 
 MAX_FURNITURE_ROWS = 1_000
@@ -70,12 +74,19 @@ _COLUMNS: dict[str, tuple[str, ...]] = {
     "non_collision": ("noncollision",),
     "is_detail": ("isdetail",),
     "is_on_the_side": ("isontheside",),
+    "size_jitter": ("sizejitter",),
+    "is_movable": ("ismovable", "movable"),
 }
 _HEADER_TO_FIELD = {alias: key for key, aliases in _COLUMNS.items() for alias in aliases}
 _ROW_NUMBER_COLUMNS = {"regel", "rule", "item", "#", "no", "nr"}
 _DISTANCES = ("min_pair_distance", "max_pair_distance", "clearance_side", "clearance_front",
               "clearance_back")
 _DETAIL_KINDS = ("door", "window")
+MAX_SIZE_JITTER = 0.5
+"""Largest ``sizeJitter`` fraction: an extent may vary by at most half of itself."""
+_MOVABLE_MODELS = re.compile(r"chair$")
+"""Models movable by default (``isMovable`` empty): the chairs, which the TFG's
+disorder moves (§3.4)."""
 
 
 @dataclass(frozen=True)
@@ -101,6 +112,8 @@ class FurnitureRule:
     non_collision: bool = False
     is_detail: bool = False
     is_on_the_side: bool = False
+    size_jitter: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    is_movable: bool | None = None
 
     @property
     def is_child(self) -> bool:
@@ -119,6 +132,13 @@ class FurnitureRule:
             return None
         lowered = self.name.lower()
         return next((kind for kind in _DETAIL_KINDS if kind in lowered), None)
+
+    def movable(self, model: str) -> bool:
+        """Whether disorder may move the item: ``isMovable`` when given, else whether its
+        model (canonical name) is a chair."""
+        if self.is_movable is not None:
+            return self.is_movable
+        return bool(_MOVABLE_MODELS.search(model))
 
     def model_candidates(self) -> tuple[str, ...]:
         """Model names to look up, best first: the full name, then without a numeric suffix."""
@@ -316,6 +336,12 @@ def _convert(key: str, cell: str, decimal_comma: bool, file: str, row: int,
              header: str) -> object:
     kind = _FIELD_TYPES[key]
     lowered = cell.lower()
+    if key == "size_jitter":
+        return _size_jitter(cell, decimal_comma, file, row, header)
+    if kind == "bool | None":
+        if lowered in _NULL:
+            return None
+        kind = "bool"
     if kind == "bool":
         if lowered in _TRUE:
             return True
@@ -339,6 +365,34 @@ def _convert(key: str, cell: str, decimal_comma: bool, file: str, row: int,
     if key == "pair_with":
         return None if lowered in _NULL else cell
     return "" if lowered in _NULL else cell
+
+
+def _size_jitter(cell: str, decimal_comma: bool, file: str, row: int, header: str
+                 ) -> tuple[float, float, float]:
+    """``sizeJitter``: one fraction for all three extents, or three (width height
+    depth) separated by spaces, each in [0, :data:`MAX_SIZE_JITTER`]."""
+    words = [] if cell.lower() in _NULL else cell.split()
+    if len(words) not in (0, 1, 3):
+        raise RuleTableError(f"sizeJitter takes one fraction or three (width height depth), "
+                             f"got {excerpt(cell)}", file=file, row=row, column=header)
+    values = []
+    for word in words:
+        text = word.replace(",", ".") if decimal_comma else word
+        try:
+            value = float(text)
+        except ValueError:
+            raise RuleTableError(f"expected a fraction, got {excerpt(word)}", file=file,
+                                 row=row, column=header) from None
+        if not 0 <= value <= MAX_SIZE_JITTER:
+            raise RuleTableError(f"a size jitter is a fraction of the extent in 0..{MAX_SIZE_JITTER:g} "
+                                 f"(0.1 = ±10 %), got {excerpt(word)}", file=file, row=row,
+                                 column=header)
+        values.append(value)
+    if not values:
+        return (0.0, 0.0, 0.0)
+    if len(values) == 1:
+        return (values[0], values[0], values[0])
+    return (values[0], values[1], values[2])
 
 
 def _check_rules(rules: list[FurnitureRule], file: str) -> list[FurnitureRule]:

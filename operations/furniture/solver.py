@@ -18,6 +18,10 @@ Every solid item must leave a passage ``passage_width`` wide between the room's 
 and keep most of the room reachable (:mod:`.passage`); a pose that breaks this is
 rejected like a collision.
 
+Each item stands at its own size (``sizeJitter``, :mod:`.variation`); with ``disorder``
+the movable items of the finished layout are turned and shifted a little, each pose
+tested like any other (:mod:`.disorder`).
+
 Doors and windows get their detail items (:mod:`.details`). The solver is a pure
 function of its inputs and the random stream.
 """
@@ -34,11 +38,13 @@ from cga.model import Diagnostic, FloorPlan, FurnitureItem
 
 from .clearance import Keepout, OpeningStrip, door_keepouts, door_strips, window_strips
 from .details import detail_items
-from .layout import ItemSpec, Layout, Pose
+from .disorder import disturb
+from .layout import ItemSpec, Layout
 from .passage import PASSAGE_WIDTH, Passage
 from .placement import Placer
 from .rules import FurnitureRules
 from .steering import random_start, separation_steering
+from .variation import jittered_size
 
 __all__ = ["CROWDING", "PATIENCE", "RoomSite", "RoomResult", "furnish_room", "furnish_plan"]
 
@@ -117,7 +123,7 @@ def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
 
 def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
                 iterations: int, passage: Passage | None
-                ) -> tuple[dict[str, tuple[ItemSpec, Pose]], list[tuple[str, str]]]:
+                ) -> tuple[Placer, list[tuple[str, str]]]:
     starts = _starts(site, specs, rng, iterations)
     layout = Layout(site.interior, list(site.keepouts), list(site.windows), passage)
     placer = Placer(layout, specs, rng)
@@ -126,12 +132,13 @@ def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Genera
         reason = placer.place(spec, starts.get(spec.name))
         if reason is not None:
             left_out.append((spec.name, reason))
-    return layout.placed, left_out
+    return placer, left_out
 
 
 def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator, *,
                  steering_iterations: int = 10, attempts: int = 20,
-                 patience: int = PATIENCE, passage_width: float = PASSAGE_WIDTH) -> RoomResult:
+                 patience: int = PATIENCE, passage_width: float = PASSAGE_WIDTH,
+                 disorder: float = 0.0) -> RoomResult:
     """Place ``specs`` (in placement order) in one room.
 
     Parameters
@@ -151,6 +158,9 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     passage_width:
         Width (m) of the passage every solid item must leave between the room's doors
         (:mod:`.passage`); 0 switches the rule off.
+    disorder:
+        Noise in [0, 1] turning and shifting the movable items of the finished layout
+        (:mod:`.disorder`); 0 leaves it tidy.
 
     Returns
     -------
@@ -160,7 +170,7 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     Raises
     ------
     ValueError
-        ``passage_width`` is negative.
+        ``passage_width`` is negative or ``disorder`` is outside [0, 1].
 
     Notes
     -----
@@ -175,25 +185,31 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     """
     if passage_width < 0:
         raise ValueError(f"passage_width must not be negative, got {passage_width:g}")
+    if not 0 <= disorder <= 1:
+        raise ValueError(f"disorder must be in [0, 1], got {disorder:g}")
     specs, crowded = _within_floor(site, specs)
     passage = Passage(site.interior, site.doors, passage_width) if passage_width > 0 else None
-    best: tuple[dict[str, tuple[ItemSpec, Pose]], list[tuple[str, str]]] | None = None
+    best: tuple[Placer, list[tuple[str, str]]] | None = None
     stale = 0
     for _ in range(max(1, attempts)):
-        placed, left_out = _solve_once(site, specs, rng, steering_iterations, passage)
-        if best is None or len(placed) > len(best[0]):
-            best, stale = (placed, left_out), 0
+        placer, left_out = _solve_once(site, specs, rng, steering_iterations, passage)
+        if best is None or len(placer.layout.placed) > len(best[0].layout.placed):
+            best, stale = (placer, left_out), 0
         else:
             stale += 1
         if not left_out or stale >= patience:
             break
     assert best is not None
-    placed, left_out = best
+    placer, left_out = best
+    movable = {s.name for s in specs if s.rule.movable(s.model)}
+    disturb(placer.layout, specs, movable, placer.related, rng, disorder)
+    placed = placer.layout.placed
     left_out = [*left_out, *crowded]
     items = tuple(
         FurnitureItem(name=spec.name, model=spec.model, room=site.id,
                       position=(pose.x, pose.z), rotation=pose.rotation % 4, size=spec.size,
-                      parent=spec.rule.pair_with, non_collision=spec.rule.non_collision)
+                      parent=spec.rule.pair_with, non_collision=spec.rule.non_collision,
+                      yaw=pose.yaw)
         for spec, pose in (placed[s.name] for s in specs if s.name in placed))
     return RoomResult(items, tuple(left_out))
 
@@ -201,7 +217,8 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
 def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
                  models: Mapping[str, tuple[str, tuple[float, float, float]]],
                  rng: np.random.Generator, *, steering_iterations: int = 10,
-                 attempts: int = 20, passage_width: float = PASSAGE_WIDTH
+                 attempts: int = 20, passage_width: float = PASSAGE_WIDTH,
+                 disorder: float = 0.0
                  ) -> tuple[tuple[FurnitureItem, ...], tuple[Diagnostic, ...]]:
     """Furnish every typed room of ``plan`` but its stair core, and add the door and
     window details.
@@ -216,8 +233,10 @@ def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
         Rule name → (model name, model size in metres) for every placeable rule.
     rng:
         The floor's random stream; each room gets its own child stream (in room-id
-        order), so a room's layout does not depend on how the others went.
-    steering_iterations, attempts, passage_width:
+        order), so a room's layout does not depend on how the others went. The sizes of
+        its items (``sizeJitter``, :mod:`.variation`) come from a child of the room's
+        stream, so they do not shift the layout's own draws.
+    steering_iterations, attempts, passage_width, disorder:
         See :func:`furnish_room`.
 
     Returns
@@ -237,10 +256,13 @@ def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
         room_rules = rules.for_room(room.type)
         if not room_rules:
             continue
-        specs = [ItemSpec(rule, *models[rule.name]) for rule in room_rules]
+        sizes = stream.spawn(1)[0]
+        specs = [ItemSpec(rule, models[rule.name][0],
+                          jittered_size(models[rule.name][1], rule.size_jitter, sizes))
+                 for rule in room_rules]
         result = furnish_room(RoomSite.from_plan(plan, room.id), specs, stream,
                               steering_iterations=steering_iterations, attempts=attempts,
-                              passage_width=passage_width)
+                              passage_width=passage_width, disorder=disorder)
         furniture.extend(result.items)
         for name, reason in result.left_out:
             diagnostics.append(Diagnostic("warning", STAGE,

@@ -18,7 +18,12 @@ Checked, with a tolerance of 1 mm:
 * children keep their pair distances (``maxPairDistance`` 0 = unbounded; not checked
   for a child against a wall) and face their parent: ``canBeAround`` children look at
   it, ``isOnTheSide`` children stand beside it turned the same way, other children
-  stand in front of it, within its width, turned to face it;
+  stand in front of it, within its width, turned to face it. With disorder, a child
+  may be turned off that by up to ``max_yaw`` radians (the documented largest free
+  turn); ``canBeAround`` children must still look at their parent;
+* clearance boxes turn with the item (its quarter turns and its free yaw);
+* copies of a ``layout`` = ``perimeter`` row are named ``<name>#<k>`` and follow that
+  row, their children ``<child>#<k>`` the child's row;
 * passage (``passage_width`` > 0): a round robot of that diameter that can go from one
   door of a room to another in the empty room still can with the furniture in. The
   robot's centre may go where the free floor (room interior minus the solid items)
@@ -40,7 +45,7 @@ from pathlib import Path
 import networkx as nx
 import numpy as np
 from shapely import STRtree
-from shapely.geometry import LineString, Point, Polygon, box
+from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import unary_union
 
 __all__ = ["read_furniture_rules", "furniture_violations", "passage_violations"]
@@ -134,9 +139,9 @@ def _clearance_boxes(item, rule) -> list[tuple[str, Polygon]]:
     cx, cz = item.position
 
     def rect(s0, s1, f0, f1):
-        corners = [(cx + sx * s + fx * f, cz + sz * s + fz * f) for s in (s0, s1) for f in (f0, f1)]
-        xs, zs = zip(*corners)
-        return box(min(xs), min(zs), max(xs), max(zs))
+        corners = [(cx + sx * s + fx * f, cz + sz * s + fz * f)
+                   for s, f in ((s0, f0), (s1, f0), (s1, f1), (s0, f1))]
+        return Polygon(corners)
 
     out = []
     if rule["front"] > 0:
@@ -198,10 +203,13 @@ def passage_violations(plan, width: float = PASSAGE_WIDTH) -> list[str]:
 
 
 def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0,
-                         passage_width: float = PASSAGE_WIDTH) -> list[str]:
+                         passage_width: float = PASSAGE_WIDTH,
+                         max_yaw: float = 0.0) -> list[str]:
     """Every broken guarantee of a furnished floor, as readable messages (empty = valid).
 
-    ``passage_width`` 0 skips the passage check (for floors furnished without it)."""
+    ``passage_width`` 0 skips the passage check (for floors furnished without it);
+    ``max_yaw`` is the largest turn (radians) disorder may give a child off facing its
+    parent."""
     rules = read_furniture_rules(rules_path, units)
     types = {room.id: (room.type or "").lower() for room in plan.rooms}
     problems: list[str] = []
@@ -210,7 +218,7 @@ def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0,
     by_key = {(i.room, i.name): i for i in items if not i.is_detail}
 
     def rule_of(item):
-        return rules.get((types[item.room], item.name.lower()))
+        return rules.get((types[item.room], item.name.split("#")[0].lower()))
 
     shrunk = [_shrunk(item.footprint()) for item in solid]
     tree = STRtree(shrunk)
@@ -267,13 +275,19 @@ def furniture_violations(plan, rules_path: str | Path, *, units: float = 1.0,
             problems.append(f"{where}: {gap:.3f} m from {parent.name}, below {rule['min']:g}")
         if rule["max"] > 0 and not rule["along_wall"] and gap > rule["max"] + TOL:
             problems.append(f"{where}: {gap:.3f} m from {parent.name}, above {rule['max']:g}")
-        problems.extend(_orientation_problems(item, parent, rule, where))
+        problems.extend(_orientation_problems(item, parent, rule, where, max_yaw))
     if passage_width > 0:
         problems.extend(passage_violations(plan, passage_width))
     return problems
 
 
-def _orientation_problems(item, parent, rule, where: str) -> list[str]:
+def _turned_off(front, wanted, max_yaw: float) -> bool:
+    """Whether the unit vectors ``front`` and ``wanted`` differ by more than ``max_yaw``."""
+    cosine = float(np.clip(np.dot(front, wanted), -1.0, 1.0))
+    return math.acos(cosine) > max_yaw + 1e-6
+
+
+def _orientation_problems(item, parent, rule, where: str, max_yaw: float) -> list[str]:
     to_parent = np.subtract(parent.position, item.position)
     front = np.asarray(item.front)
     if rule["around"]:
@@ -282,14 +296,14 @@ def _orientation_problems(item, parent, rule, where: str) -> list[str]:
             return [f"{where} does not face {parent.name}"]
         return []
     if rule["side"]:
-        if item.rotation != parent.rotation:
+        if _turned_off(front, np.asarray(parent.front), max_yaw):
             return [f"{where} is not turned like {parent.name}"]
         lateral = abs(np.dot(to_parent, (-parent.front[1], parent.front[0])))
         if lateral < (parent.size[0] + item.size[0]) / 2 - TOL:
             return [f"{where} is not beside {parent.name}"]
         return []
     problems = []
-    if not np.allclose(front, -np.asarray(parent.front)):
+    if _turned_off(front, -np.asarray(parent.front), max_yaw):
         problems.append(f"{where} does not face {parent.name}")
     ahead = -np.dot(to_parent, parent.front)
     lateral = abs(np.dot(to_parent, (-parent.front[1], parent.front[0])))

@@ -122,7 +122,7 @@ def test_the_model_library_is_shared_through_the_build_cache(tmp_path, room_plan
                            base_dir=tmp_path)
     args = {"rules": "furniture_thesis.csv", "openings": None, "doorWidth": None,
             "doorHeight": None, "steeringIterations": 10, "clearanceTries": 20,
-            "passage_width": 0.6}
+            "passage_width": 0.6, "disorder": 0.0}
     (first,) = AddFurniture().apply(shape, args, ctx)
     library = cache[LIBRARY_CACHE_KEY]
     assert library.search_dirs[:2] == (tmp_path, tmp_path / "models")
