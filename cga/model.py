@@ -113,8 +113,19 @@ class Wall:
 
     @property
     def direction(self) -> np.ndarray:
+        return np.array(self._unit())
+
+    def _unit(self) -> tuple[float, float]:
+        """The unit vector from ``start`` to ``end``. Walls along an axis (nearly all)
+        skip numpy: their length is one coordinate's difference exactly, as
+        ``np.linalg.norm`` gives it, so both ways give the same bits."""
+        dx, dz = self.end[0] - self.start[0], self.end[1] - self.start[1]
+        if (dx == 0.0) != (dz == 0.0):
+            length = abs(dx) if dz == 0.0 else abs(dz)
+            return (dx / length, dz / length)
         d = np.subtract(self.end, self.start)
-        return d / np.linalg.norm(d)
+        ux, uz = d / np.linalg.norm(d)
+        return (float(ux), float(uz))
 
     @property
     def normal(self) -> np.ndarray:
@@ -168,8 +179,8 @@ class Wall:
 
     def point_at(self, distance: float) -> tuple[float, float]:
         """The point ``distance`` metres from ``start`` along the segment."""
-        p = np.asarray(self.start) + self.direction * distance
-        return (float(p[0]), float(p[1]))
+        ux, uz = self._unit()
+        return (float(self.start[0] + ux * distance), float(self.start[1] + uz * distance))
 
     def segment(self) -> LineString:
         return LineString([self.start, self.end])

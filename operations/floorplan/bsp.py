@@ -257,11 +257,70 @@ def _choose_cut(ring: list[Point], rng: np.random.Generator, rules: _Rules,
         k = _AXES[axis]
         marks = sorted({p[k] for p in ring})
         drawn = marks[0] + rng.uniform(*rules.cut_range) * (marks[-1] - marks[0])
+        window = _rectangle_window(ring, k, rules, contact)
+        if window[0] > window[1]:
+            continue  # no position can work: skip the search (the draw above is kept)
         for position in _candidates(drawn, marks, rules):
+            if not window[0] <= position <= window[1]:
+                continue
             chord = _best_chord(ring, k, position, rules, contact)
             if chord is not None:
                 return axis, position, chord[0], chord[1]
     return None
+
+
+_WINDOW_SLACK = 2e-6
+"""m; :func:`_rectangle_window` widens its bounds by this, far more than the rounding
+of the exact tests it stands in front of (about 1e-14 m), far less than the 1 cm grid."""
+
+
+def _rectangle_window(ring: list[Point], k: int, rules: _Rules,
+                      contact: list[bool] | None) -> tuple[float, float]:
+    """Cut positions on the line ``coord[k] = c`` worth testing with :func:`_best_chord`.
+
+    A quick necessary test, so the search skips the positions (often all of one axis)
+    that cannot give two valid rooms; it never decides a cut, :func:`_best_chord` does.
+    For an axis-aligned rectangle the two pieces of a cut at ``c`` are rectangles
+    ``c - lo`` and ``hi - c`` long by the leaf's depth ``d``: each must be
+    ``min_width`` long, ``min_area`` large and keep ``min_contact`` of circulation wall
+    (``d`` for every circulation edge at its end of the leaf, its length for every one
+    along the cut axis). Each condition bounds ``c`` from one side. Other leaves: the
+    whole line.
+    """
+    xs, zs = {p[0] for p in ring}, {p[1] for p in ring}
+    if len(ring) != 4 or len(xs) != 2 or len(zs) != 2:
+        return (-math.inf, math.inf)
+    ends = sorted(xs if k == 0 else zs)
+    across = sorted(zs if k == 0 else xs)
+    lo, hi = ends
+    depth = across[1] - across[0]
+    if depth < rules.min_width - _WINDOW_SLACK:
+        return (math.inf, -math.inf)
+    need = max(rules.min_width, rules.min_area / depth)  # length of each piece
+    first, last = lo + need, hi - need
+    if contact is not None:
+        along = at_lo = at_hi = 0
+        for i, on in enumerate(contact):
+            if not on:
+                continue
+            a, b = ring[i], ring[(i + 1) % 4]
+            if a[k] != b[k]:
+                along += 1  # cut in two: each piece keeps its length of it
+            elif a[k] == lo:
+                at_lo += 1
+            else:
+                at_hi += 1
+        for kept, sign in ((at_lo, 1), (at_hi, -1)):
+            short = rules.min_contact - kept * depth
+            if short <= 0:
+                continue
+            if not along:
+                return (math.inf, -math.inf)
+            if sign > 0:
+                first = max(first, lo + short / along)
+            else:
+                last = min(last, hi - short / along)
+    return (first - _WINDOW_SLACK, last + _WINDOW_SLACK)
 
 
 def _straight_vertices(ring: list[Point]) -> list[bool]:

@@ -24,8 +24,8 @@ from typing import Literal
 import numpy as np
 from shapely.geometry import Polygon, box
 
-from .bsp import (Cut, FixedFace, Partition, _best_chord, _candidates, _Rules,
-                  _shortfall)
+from .bsp import (Cut, FixedFace, Partition, _best_chord, _candidates, _rectangle_window,
+                  _Rules, _shortfall)
 from .dcel import DCEL, EPS, Face
 from .tiling import tile_with_fixed_faces
 
@@ -188,9 +188,14 @@ def _cut_for(dcel: DCEL, face: Face, wanted: list[float], rng: np.random.Generat
             aim = _position_for_share(polygon, k, marks[0], marks[-1], share)
             # keep the aim where both pieces can be min_width wide (exact for rectangles)
             aim = min(max(aim, marks[0] + rules.min_width), marks[-1] - rules.min_width)
+            window = _rectangle_window(ring, k, rules, contact)
+            if window[0] > window[1]:
+                continue  # no position on this axis gives two valid rooms
             for tried, position in enumerate(_candidates(aim, marks, rules)):  # nearest first
                 if tried == _MAX_CANDIDATES:
                     break
+                if not window[0] <= position <= window[1]:
+                    continue  # still counts as tried
                 chord = _best_chord(ring, k, position, rules, contact)
                 if chord is None:
                     continue

@@ -222,7 +222,25 @@ def _sweep_fits(room: Room, wall: Wall, centre: float, width: float,
     reach = width - 2 * eps
     square = [corner, corner + along * reach, corner + (along + normal) * reach,
               corner + normal * reach]
-    return room.interior.covers(Polygon(square))
+    box = _axis_aligned_box(room.interior)
+    if box is None:
+        return room.interior.covers(Polygon(square))
+    x0, z0, x1, z1 = box  # a rectangle covers a polygon when it holds its corners
+    return all(x0 <= x <= x1 and z0 <= z <= z1 for x, z in square)
+
+
+def _axis_aligned_box(polygon: Polygon) -> tuple[float, float, float, float] | None:
+    """``(minx, minz, maxx, maxz)`` when ``polygon`` is an axis-aligned rectangle
+    without holes (most room interiors), else None."""
+    if polygon.interiors:
+        return None
+    ring = polygon.exterior.coords
+    if len(ring) != 5:
+        return None
+    xs, zs = {x for x, _ in ring}, {z for _, z in ring}
+    if len(xs) != 2 or len(zs) != 2:
+        return None
+    return min(xs), min(zs), max(xs), max(zs)
 
 
 def door_opening(door: Door, plan: FloorPlan) -> Opening:
