@@ -26,8 +26,12 @@ _MAX_PIECES = 256
 
 
 def as_manifold(mesh: trimesh.Trimesh) -> manifold3d.Manifold | None:
-    """``mesh`` as a manifold3d solid, or ``None`` when it is empty or not watertight."""
-    if len(mesh.faces) == 0:
+    """``mesh`` as a manifold3d solid, or ``None`` when it is empty or not watertight.
+
+    Watertightness is tested first (every edge shared by exactly two triangles):
+    manifold3d 3.5 can crash on some open surfaces, such as a facade face with a door
+    cut out, instead of reporting them as not manifold."""
+    if len(mesh.faces) == 0 or not mesh.is_watertight:
         return None
     solid = manifold3d.Manifold(manifold3d.Mesh(
         vert_properties=np.asarray(mesh.vertices, dtype=np.float32),

@@ -622,8 +622,7 @@ class _FloorCheck:
             other = door.rooms[1] if door.rooms[0] == room.id else door.rooms[0]
             where = "outside" if other == OUTSIDE else self._label(other)
             if not self._passable(door, self.drivable_bare):
-                reasons.append(f"door {door.id} to {where} is too narrow for the robot "
-                               f"({door.width:.2f} m wide, needs more than {2 * self.radius:.2f} m)")
+                reasons.append(self._why_closed(door, where))
             elif not self._passable(door, self.drivable):
                 blocked.append(door.id)
                 names = self._items_touching(self.grid.rasterise(
@@ -644,6 +643,21 @@ class _FloorCheck:
                                f"approach off from the rest of {where}"
                                + (f": {', '.join(near)}" if near else ""))
         return reasons, blocked, items
+
+    def _why_closed(self, door: Door, where: str) -> str:
+        """Why the bare structure leaves no passage through a door: the opening itself is
+        narrower than the robot, or something built stands in or before it (named)."""
+        if door.width <= 2 * self.radius:
+            return (f"door {door.id} to {where} is too narrow for the robot "
+                    f"({door.width:.2f} m wide, needs more than {2 * self.radius:.2f} m)")
+        doorway = self.grid.rasterise(self._doorway(door, self.radius + 2 * self.res))
+        names = [o.path for o in self.grid.obstacles
+                 if o.kind not in ("furniture", "wall") and o.door is None
+                 and (self.grid.occupied_by([o.path]) & doorway).any()]
+        shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+        return (f"door {door.id} to {where} is {door.width:.2f} m wide, but the building "
+                f"itself leaves no passage {2 * self.radius:.2f} m wide through it"
+                + (f": blocked by {shown}" if names else ""))
 
     def _label(self, room_id: int) -> str:
         room = self.plan.room(room_id)

@@ -18,12 +18,15 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from cga.model import Diagnostic
 from cga.scene import Scene, SceneNode
 
 from .shapes import face_mesh, footprint_mesh, mass_mesh, shape_node
 
 if TYPE_CHECKING:  # pragma: no cover
     from cga.operations.furniture.library import ModelLibrary
+
+    from .facades import StoreyCutter
 
 __all__ = ["face_mesh", "footprint_mesh", "mass_mesh", "scene_nodes", "shape_node"]
 
@@ -44,13 +47,19 @@ def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[Sce
     Returns
     -------
     list of SceneNode
-        Masses and faces named by shape path; for each storey its floor solids
+        Masses and faces named by shape path (fitted to the storeys with interiors:
+        their rooms and openings cut out, :mod:`.facades`); for each storey its floor solids
         (walls, slab, roof), its stair and stairwell rail, then its furniture.
     """
     nodes: list[SceneNode] = []
+    cutters = None
     for shape in scene.terminals:
         if shape.plan is None:
-            nodes.append(shape_node(shape))
+            if cutters is None:  # massing builds (no floors) never load manifold3d
+                cutters = _storey_cutters(scene)
+            node = _fitted(shape_node(shape), cutters, scene)
+            if node is not None:
+                nodes.append(node)
             continue
         from .items import item_node
         from .solids import floor_nodes
@@ -61,6 +70,29 @@ def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[Sce
         nodes.extend(stair_nodes(shape.plan))
         nodes.extend(item_node(item, shape.plan, library) for item in shape.plan.furniture)
     return nodes
+
+
+def _storey_cutters(scene: Scene) -> "list[StoreyCutter]":
+    if not scene.floors:
+        return []
+    from .facades import storey_cutters
+
+    return storey_cutters(scene.floors)
+
+
+def _fitted(node: SceneNode, cutters: "list[StoreyCutter]", scene: Scene) -> SceneNode | None:
+    """A mass or face with the storeys' rooms and openings cut out (:mod:`.facades`); a
+    piece left with nothing is dropped, with a diagnostic."""
+    if not cutters:
+        return node
+    from .facades import fit_facade
+
+    fitted = fit_facade(node, cutters)
+    if fitted is None:
+        scene.diagnostics.append(Diagnostic(
+            "warning", "meshing", f"{node.path} left out: it lies wholly inside the rooms or "
+            f"the door and window openings of a storey with an interior"))
+    return fitted
 
 
 def _grammar_library(scene: Scene) -> "ModelLibrary":

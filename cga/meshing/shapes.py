@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from shapely.geometry import Polygon
+from shapely.geometry.base import BaseGeometry
 
 from cga.scene import SceneNode
 from cga.shape import Face, Mass, Shape
@@ -21,7 +22,7 @@ from cga.shape import Face, Mass, Shape
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
-__all__ = ["mass_mesh", "face_mesh", "footprint_mesh", "shape_node"]
+__all__ = ["mass_mesh", "face_mesh", "footprint_mesh", "polygon_mesh", "shape_node"]
 
 # (x, -z) plan polygon extruded along +z, then turned -90° about x: (x, y, z) → (x, z, -y),
 # so (x, -z_plan, h) lands at (x, h, z_plan): a rotation, so triangle winding survives.
@@ -72,9 +73,31 @@ def face_mesh(vertices: Any, normal: Any | None = None) -> "trimesh.Trimesh":
     u = u / np.linalg.norm(u)
     v = np.cross(n, u)
     local = (pts - pts[0]) @ np.column_stack([u, v])
-    flat_vertices, triangles = trimesh.creation.triangulate_polygon(Polygon(local))
-    points = pts[0] + np.outer(flat_vertices[:, 0], u) + np.outer(flat_vertices[:, 1], v)
-    return trimesh.Trimesh(vertices=points, faces=_facing(points, triangles, n), process=False)
+    return polygon_mesh(Polygon(local), pts[0], u, v, n)
+
+
+def polygon_mesh(polygon: BaseGeometry, origin: Any, u: Any, v: Any,
+                 normal: Any) -> "trimesh.Trimesh":
+    """A plane (multi)polygon, holes kept, triangulated into 3D: the point ``(a, b)`` of
+    the plane lands at ``origin + a·u + b·v``; the triangles face along ``normal``."""
+    import trimesh
+
+    origin, u, v = (np.asarray(a, dtype=float) for a in (origin, u, v))
+    vertices, faces = [], []
+    count = 0
+    for piece in getattr(polygon, "geoms", [polygon]):
+        if not isinstance(piece, Polygon) or piece.is_empty or not piece.area > 0:
+            continue
+        flat, triangles = trimesh.creation.triangulate_polygon(piece)
+        vertices.append(origin + np.outer(flat[:, 0], u) + np.outer(flat[:, 1], v))
+        faces.append(np.asarray(triangles, dtype=np.int64).reshape(-1, 3) + count)
+        count += len(flat)
+    if not vertices:
+        return trimesh.Trimesh(vertices=np.zeros((0, 3)), faces=np.zeros((0, 3), dtype=np.int64),
+                               process=False)
+    points = np.concatenate(vertices)
+    return trimesh.Trimesh(vertices=points, faces=_facing(points, np.concatenate(faces), normal),
+                           process=False)
 
 
 def footprint_mesh(mass: Mass) -> "trimesh.Trimesh":

@@ -80,9 +80,11 @@ def test_glb_loads_and_holds_every_node(built):
     assert np.all(np.isfinite([low, high])) and np.all(high > low)
     if data["floors"]:
         # everything stands on the lot, between the ground and the top of the last storey
+        # or of the massing above it (a parapet)
         x0, z0 = np.min([_polygon(f["footprint"]).bounds[:2] for f in data["floors"]], axis=0)
         x1, z1 = np.max([_polygon(f["footprint"]).bounds[2:] for f in data["floors"]], axis=0)
-        top = max(f["elevation"] + f["height"] for f in data["floors"])
+        top = max([f["elevation"] + f["height"] for f in data["floors"]]
+                  + [n["bbox"]["max"][1] for n in data["nodes"] if n["kind"] in ("mass", "face")])
         assert low[0] >= x0 - TOLERANCE and low[2] >= z0 - TOLERANCE
         assert high[0] <= x1 + TOLERANCE and high[2] <= z1 + TOLERANCE
         assert low[1] >= -TOLERANCE and high[1] <= top + TOLERANCE

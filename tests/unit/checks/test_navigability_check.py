@@ -8,6 +8,7 @@ import pytest
 from shapely.geometry import Point
 
 from cga.checks import check_navigability
+from cga.scene import SceneNode
 
 FRONT, INNER = 0, 1  # door ids of the two_rooms fixture
 
@@ -164,3 +165,15 @@ def test_report_dict_and_summary(kit, two_rooms):
 def test_invalid_radius(kit, two_rooms):
     with pytest.raises(ValueError, match="radius"):
         check_navigability(kit.scene_of(two_rooms), [], radius=0)
+
+
+def test_a_facade_across_the_front_door_is_named_not_called_narrow(kit, two_rooms):
+    """A wide door shut by built geometry (a facade face left uncut) used to read
+    "door 0 … is too narrow for the robot (0.90 m wide, needs more than 0.50 m)"."""
+    pane = kit.box_mesh((4.0, 2.8, 0.002), (2.0, 0.2 + 1.4, -0.001))
+    nodes = kit.structure(two_rooms) + [SceneNode("Lot/Storey/Facade[0]/Pane", "face", pane)]
+    room = _rooms(check_navigability(kit.scene_of(two_rooms), nodes))[0]
+    assert not room.reachable
+    [reason] = [r for r in room.reasons if f"door {FRONT}" in r]
+    assert "too narrow" not in reason
+    assert "0.90 m wide" in reason and "Lot/Storey/Facade[0]/Pane" in reason
