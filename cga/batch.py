@@ -14,6 +14,13 @@ worker that died) gets a manifest line with its ``error`` and a folder with
 writes into a folder: a lock file (``.cga-batch.lock``, an ``flock`` the kernel drops
 when the process dies) names the running batch to a second one, which is refused.
 Seeds are generated lazily, so ``-n 1e12`` starts at once.
+
+Builds run on an engine (:mod:`cga.batch_engine`): local worker processes by default, a
+Ray cluster with ``engine="ray"`` (:mod:`cga.batch_ray`). ``shard=Shard(I, N)`` builds
+every N-th seed into its own manifest (:mod:`cga.batch_shard`, joined by
+:mod:`cga.batch_merge`). Every line records the inputs of its build
+(:mod:`cga.provenance`); a resume whose inputs differ from the built houses' is refused,
+naming what changed, unless ``force`` starts a new manifest.
 """
 
 from __future__ import annotations
@@ -28,32 +35,27 @@ import shutil
 import socket
 import time
 import traceback
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .batch_engine import Engine, make_engine, max_jobs
+from .batch_shard import LOCK, MANIFEST, Shard, manifest_name, write_ranges
 from .difficulty.metrics import mean_metrics
 from .errors import CGAError, ExportError, UsageError
+from .provenance import RecordedInputs, provenance, recording
 from .quality import quality_report
 
 if TYPE_CHECKING:  # pragma: no cover
     from .scene import Scene
 
 __all__ = ["BatchRecord", "BatchReport", "run_batch", "read_manifest", "seed_folder",
-           "max_jobs", "MANIFEST", "LOCK"]
+           "max_jobs", "MANIFEST", "LOCK", "VOLATILE_FIELDS"]
 
-MANIFEST = "manifest.jsonl"
-LOCK = ".cga-batch.lock"
 _TMP_PREFIX = ".building-"
 _REPORTED_FAILURES = 20
 """Failed seeds listed by name in a report (all of them are in the manifest)."""
-
-
-def max_jobs() -> int:
-    """The most worker processes a batch may start: four per core. More only adds
-    memory and switching; a typo such as ``--jobs 2000`` used to start them all."""
-    return 4 * (os.cpu_count() or 1)
 
 
 def seed_folder(seed: int) -> str:
@@ -81,9 +83,23 @@ class BatchRecord:
     """Camera views rendered (``--export render``: room views and top-down views)."""
     difficulty: dict[str, Any] = field(default_factory=dict)
     """The building's measured difficulty (:meth:`cga.difficulty.DifficultyReport.totals`)."""
+    provenance: dict[str, Any] = field(default_factory=dict)
+    """What the build was made from (:func:`cga.provenance.provenance`): digests of the
+    grammar and of every file it read, the build options and the cga version."""
+    folder: str | None = None
+    """The seed's folder relative to the manifest's, when it is not ``seed_NNNNNN``
+    beside it (a manifest joined by ``cga batch merge`` from other folders)."""
 
     def to_json(self) -> str:
-        return json.dumps(self.__dict__, sort_keys=True)
+        data = dict(self.__dict__)
+        if data["folder"] is None:
+            del data["folder"]
+        return json.dumps(data, sort_keys=True)
+
+
+VOLATILE_FIELDS = ("seconds",)
+"""Manifest fields that differ between two runs of the same seeds: the build's wall
+time. Every other field of a line is a function of the seed and the inputs."""
 
 
 @dataclass(frozen=True)
@@ -161,13 +177,14 @@ class BatchReport:
         }
 
 
-def read_manifest(out_dir: Path) -> dict[int, BatchRecord]:
-    """The latest manifest line of each seed whose folder exists, built or failed.
+def read_manifest(out_dir: Path, shard: Shard | None = None) -> dict[int, BatchRecord]:
+    """The latest manifest line of each seed whose folder exists, built or failed (of
+    ``shard``'s manifest when given).
 
     A line cut short by an interruption is ignored; a later line for a seed (a rebuild
     of a failed seed) replaces an earlier one.
     """
-    path = Path(out_dir) / MANIFEST
+    path = Path(out_dir) / manifest_name(shard)
     records: dict[int, BatchRecord] = {}
     if not path.exists():
         return records
@@ -179,19 +196,19 @@ def read_manifest(out_dir: Path) -> dict[int, BatchRecord]:
                 continue
             records[record.seed] = record
     return {seed: record for seed, record in records.items()
-            if (Path(out_dir) / seed_folder(seed)).is_dir()}
+            if (Path(out_dir) / (record.folder or seed_folder(seed))).is_dir()}
 
 
-def _rewrite_manifest(out_dir: Path, records: dict[int, BatchRecord]) -> None:
-    """Rewrite the manifest with one complete line per seed (drops a partial line)."""
+def _rewrite_manifest(path: Path, records: dict[int, BatchRecord]) -> None:
+    """Rewrite a manifest with one complete line per seed (drops a partial line)."""
     from .fsutil import atomic_write
 
     lines = "".join(records[s].to_json() + "\n" for s in sorted(records))
-    atomic_write(out_dir / MANIFEST, lines)
+    atomic_write(path, lines)
 
 
-def _append_record(out_dir: Path, record: BatchRecord) -> None:
-    fd = os.open(out_dir / MANIFEST, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+def _append_record(path: Path, record: BatchRecord) -> None:
+    fd = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
     try:
         os.write(fd, (record.to_json() + "\n").encode("utf-8"))
         os.fsync(fd)
@@ -229,16 +246,18 @@ def _publish(out_dir: Path, seed: int, staging: Path) -> None:
     os.replace(staging, final)
 
 
-def _failure(out_dir: Path, seed: int, message: str, seconds: float,
+def _failure(out_dir: Path, inputs: dict[str, Any], seed: int, message: str, seconds: float,
              details: str | None = None) -> BatchRecord:
-    """Record a failed seed: a folder holding ``error.txt`` and a manifest record."""
+    """Record a failed seed: a folder holding ``error.txt`` and a manifest record
+    carrying ``inputs`` (its provenance)."""
     staging = _staging(out_dir, seed)
     shutil.rmtree(staging, ignore_errors=True)
     staging.mkdir(parents=True)
     (staging / "error.txt").write_text((details or message) + "\n", encoding="utf-8")
     _publish(out_dir, seed, staging)
     return BatchRecord(seed=seed, valid=False, seconds=round(seconds, 4),
-                       error=message.splitlines()[0] if message else "failed")
+                       error=message.splitlines()[0] if message else "failed",
+                       provenance=inputs)
 
 
 def _quality_totals(floors: list[dict[str, Any]]) -> dict[str, Any]:
@@ -255,6 +274,29 @@ def _quality_totals(floors: list[dict[str, Any]]) -> dict[str, Any]:
     }
 
 
+_NOT_RECORDED = ("grammar_path", "seed", "out_dir", "quiet", "operations")
+"""Build keywords that are not options of a dataset: set per seed by the batch, or
+(``operations``, Python callers only) code rather than data."""
+
+
+def recorded_options(build_options: dict[str, Any]) -> dict[str, Any]:
+    """Every option of :func:`cga.pipeline.build`, defaults filled in, as a manifest line
+    records it: a Python caller that leaves an option at its default and the command
+    line that passes the default record the same configuration."""
+    from .pipeline import build
+
+    bound = inspect.signature(build).bind_partial(**build_options)
+    bound.apply_defaults()
+    options = {name: value for name, value in bound.arguments.items() if name not in _NOT_RECORDED}
+    options["overrides"] = dict(options.get("overrides") or {})  # None and {}: none
+    return options
+
+
+def _inputs(grammar: str, build_options: dict[str, Any], reads: Sequence[Path] = ()
+            ) -> dict[str, Any]:
+    return provenance(Path(grammar), recorded_options(build_options), reads)
+
+
 def _build_one(grammar: str, seed: int, out_dir: str, build_options: dict[str, Any]) -> BatchRecord:
     """Build one seed into a staging folder, then move it into place (in a worker or in
     the batch's own process). A failure is a result of the batch, not a crash: it is
@@ -265,47 +307,74 @@ def _build_one(grammar: str, seed: int, out_dir: str, build_options: dict[str, A
     staging = _staging(out, seed)
     shutil.rmtree(staging, ignore_errors=True)
     start = time.perf_counter()
-    try:
-        scene = build(grammar, seed=seed, out_dir=staging, quiet=True, **build_options)
-    except CGAError as error:
-        return _failure(out, seed, str(error), time.perf_counter() - start)
-    except Exception as error:  # a defect must not stop the other seeds of the dataset
-        return _failure(out, seed, f"internal error: {type(error).__name__}: {error}",
-                        time.perf_counter() - start, traceback.format_exc())
-    except BaseException:  # interrupted: leave nothing half-built behind
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
+    with recording() as reads:
+        try:
+            scene = build(grammar, seed=seed, out_dir=staging, quiet=True, **build_options)
+        except CGAError as error:
+            return _failure(out, _inputs(grammar, build_options, reads), seed,
+                            str(error), time.perf_counter() - start)
+        except Exception as error:  # a defect must not stop the other seeds of the dataset
+            return _failure(out, _inputs(grammar, build_options, reads), seed,
+                            f"internal error: {type(error).__name__}: {error}",
+                            time.perf_counter() - start, traceback.format_exc())
+        except BaseException:  # interrupted: leave nothing half-built behind
+            shutil.rmtree(staging, ignore_errors=True)
+            raise
     record = _summarise(scene, time.perf_counter() - start, seed)
     views = sum(1 for _ in staging.glob("*.render/*.camera.json"))
-    if views:
-        record = replace(record, views=views)
+    record = replace(record, views=views, provenance=_inputs(grammar, build_options, reads))
     staging.mkdir(parents=True, exist_ok=True)  # a build that writes no files
     _publish(out, seed, staging)
     return record
 
 
 @contextlib.contextmanager
-def _exclusive(out: Path) -> Iterator[None]:
-    """Hold the batch lock of ``out`` (refuse if another live batch holds it)."""
-    from .fsutil import lock_exclusive
+def _lock(path: Path, out: Path, shared: bool, busy: Callable[[str], str]) -> Iterator[None]:
+    """Hold the lock file ``path`` (exclusively, naming this batch in it, or shared);
+    refuse with ``busy(owner)`` if another live batch holds it."""
+    from .fsutil import lock_exclusive, lock_shared
 
-    path = out / LOCK
     try:
         fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
     except OSError as error:
         raise ExportError(f"cannot write into the output folder {out}: "
                           f"{error.strerror or error}") from None
     try:
-        if not lock_exclusive(fd):
-            owner = os.read(fd, 4096).decode("utf-8", "replace").strip() or "another process"
-            raise UsageError(f"another batch is writing into {out} ({owner}); wait for it to "
-                             f"finish or choose another --out")
-        os.ftruncate(fd, 0)
-        os.write(fd, f"pid {os.getpid()} on {socket.gethostname()}, started "
-                     f"{time.strftime('%Y-%m-%d %H:%M:%S %Z')}\n".encode())
-        yield
+        if not (lock_shared if shared else lock_exclusive)(fd):
+            owner = os.read(fd, 4096).decode("utf-8", "replace").strip()
+            raise UsageError(busy(owner))
+        if not shared:
+            os.ftruncate(fd, 0)
+            os.write(fd, f"pid {os.getpid()} on {socket.gethostname()}, started "
+                         f"{time.strftime('%Y-%m-%d %H:%M:%S %Z')}\n".encode())
+        try:
+            yield
+        finally:
+            if not shared:  # the shards that lock the folder next name nobody
+                os.ftruncate(fd, 0)
     finally:
         os.close(fd)
+
+
+@contextlib.contextmanager
+def _exclusive(out: Path, shard: Shard | None) -> Iterator[None]:
+    """Hold the batch locks of ``out``: an unsharded batch has the folder to itself;
+    shards share it, each holding its own shard's lock (:mod:`cga.batch_shard`)."""
+    def busy(owner: str) -> str:
+        if shard is None and not owner:
+            return (f"shards of a batch are writing into {out}; wait for them to finish or "
+                    f"choose another --out")
+        return (f"another batch is writing into {out} ({owner or 'another process'}); wait "
+                f"for it to finish or choose another --out")
+
+    with _lock(out / LOCK, out, shard is not None, busy):
+        if shard is None:
+            yield
+            return
+        with _lock(out / f".cga-batch.{shard.tag}.lock", out, False,
+                   lambda owner: f"shard {shard} is already being built into {out} "
+                                 f"({owner or 'another process'})"):
+            yield
 
 
 def _check_options(grammar: str, build_options: dict[str, Any]) -> None:
@@ -323,10 +392,12 @@ def _check_options(grammar: str, build_options: dict[str, Any]) -> None:
     check_grammar(grammar, **build_options)
 
 
-def run_batch(grammar: str | Path, *, count: int, out_dir: str | Path, jobs: int = 1,
+def run_batch(grammar: str | Path, *, count: int, out_dir: str | Path, jobs: int | None = None,
               seed_start: int = 0, build_options: dict[str, Any] | None = None,
               time_limit: float | None = None,
-              on_progress: Callable[[int, int], None] | None = None) -> BatchReport:
+              on_progress: Callable[[int, int], None] | None = None,
+              engine: str = "local", address: str | None = None, retries: int | None = None,
+              shard: Shard | None = None, force: bool = False) -> BatchReport:
     """Build ``count`` seeds of a grammar, skipping seeds an earlier run built.
 
     Parameters
@@ -334,69 +405,140 @@ def run_batch(grammar: str | Path, *, count: int, out_dir: str | Path, jobs: int
     grammar : path of the grammar file.
     count, seed_start : build seeds ``seed_start .. seed_start + count - 1``.
     out_dir : folder for the per-seed folders and ``manifest.jsonl``.
-    jobs : worker processes, at most :func:`max_jobs` (1 builds in this process unless
-        there is a time limit).
+    jobs : worker processes, at most :func:`max_jobs` (default 1, which builds in this
+        process unless there is a time limit); with ``engine="ray"``, the CPUs of the
+        local cluster started, or the most builds in flight on the cluster at
+        ``address``.
     build_options : keyword arguments passed to :func:`cga.pipeline.build` (e.g.
         ``physics=False``).
     time_limit : seconds one build may take; a build over it is stopped and recorded as
         failed (builds then run in worker processes).
     on_progress : called with (done, total) after each finished build.
+    engine : ``"local"`` (worker processes on this machine) or ``"ray"``
+        (:mod:`cga.batch_ray`).
+    address, retries : the Ray cluster to use (None: start a local one) and how often a
+        lost task is retried (Ray only).
+    shard : build only this shard's seeds (every N-th), into its own manifest.
+    force : when the built houses' recorded inputs differ from the current ones, move
+        the manifest and its seed folders to ``superseded-<time>/`` and start anew
+        (without it, such a resume is refused).
 
     Returns
     -------
-    BatchReport over every seed of the range that has a manifest line; its ``failed``
-    seeds are the ones to look at (a rerun builds them again).
+    BatchReport over every seed of the range (of the shard) that has a manifest line;
+    its ``failed`` seeds are the ones to look at (a rerun builds them again).
 
     Raises
     ------
     UsageError
         A bad count, seed, job count or time limit; another batch writes into
-        ``out_dir``; an unknown build option.
+        ``out_dir``; an unknown build option or engine; the manifest's houses were
+        built from other inputs (the message names what changed).
     CGAError
         Whatever every seed would fail with: a syntax error in the grammar, a missing
         grammar, an unknown export format, an output folder that cannot be written.
     """
     if count < 1:
         raise UsageError(f"-n must be at least 1, got {count}")
-    if jobs < 1:
-        raise UsageError(f"--jobs must be at least 1, got {jobs}")
-    if jobs > max_jobs():
-        raise UsageError(f"--jobs must be at most {max_jobs()} (4 per core on this machine's "
-                         f"{os.cpu_count()} cores), got {jobs}")
     if seed_start < 0:
         raise UsageError(f"--seed-start must be a whole number ≥ 0, got {seed_start}")
     if time_limit is not None and not 0 < time_limit < math.inf:
         raise UsageError(f"--time-limit must be a positive number of seconds, got {time_limit}")
+    runner = make_engine(engine, jobs=jobs, time_limit=time_limit, address=address,
+                         retries=retries)
     grammar = str(Path(grammar).resolve())
     options = dict(build_options or {})
     _check_options(grammar, options)
-    out = Path(out_dir)
+    out = Path(out_dir).absolute()  # workers on other nodes and in other folders
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as error:
         raise ExportError(f"cannot create the output folder {out}: "
                           f"{error.strerror or error}") from None
-    with _exclusive(out):
-        return _run_locked(grammar, out, range(seed_start, seed_start + count), options,
-                           jobs, time_limit, on_progress)
+    seeds = range(seed_start, seed_start + count)
+    with _exclusive(out, shard):
+        if shard is not None:
+            write_ranges(out, shard, seeds)
+        return _run_locked(_Run(grammar, out, options, runner, shard, force),
+                           shard.seeds(seeds) if shard else seeds, on_progress)
 
 
-def _remove_staging(out: Path) -> None:
-    """Remove unfinished seed folders and manifest temporaries. Only under the lock: then
-    no other batch is writing, so every one of them is stale."""
-    for stale in (*out.glob(f"{_TMP_PREFIX}*"), *out.glob(f".{MANIFEST}.*.tmp")):
-        if stale.is_dir() and not stale.is_symlink():
-            shutil.rmtree(stale, ignore_errors=True)
+@dataclass(frozen=True)
+class _Run:
+    """What one batch run builds, with what, and where its manifest is."""
+
+    grammar: str
+    out: Path
+    options: dict[str, Any]
+    engine: Engine
+    shard: Shard | None
+    force: bool
+
+    @property
+    def manifest(self) -> Path:
+        return self.out / manifest_name(self.shard)
+
+    def owns(self, seed: int) -> bool:
+        return self.shard is None or self.shard.owns(seed)
+
+
+def _remove_staging(run: _Run) -> None:
+    """Remove this run's unfinished seed folders and manifest temporaries. Only under
+    the lock: then no other batch builds these seeds, so every one of them is stale
+    (other shards' seeds are theirs to clean)."""
+    prefix = f"{_TMP_PREFIX}seed_"
+    stale = [path for path in run.out.glob(f"{prefix}*")
+             if path.name[len(prefix):].isdigit() and run.owns(int(path.name[len(prefix):]))]
+    for path in (*stale, *run.out.glob(f".{run.manifest.name}.*.tmp")):
+        if path.is_dir() and not path.is_symlink():
+            shutil.rmtree(path, ignore_errors=True)
         else:
-            stale.unlink(missing_ok=True)
+            path.unlink(missing_ok=True)
 
 
-def _run_locked(grammar: str, out: Path, seeds: range, options: dict[str, Any], jobs: int,
-                time_limit: float | None,
+def _check_inputs(run: _Run, records: dict[int, BatchRecord]) -> dict[int, BatchRecord]:
+    """The records to resume from: ``records`` if every built house was made from the
+    current inputs. Otherwise refuse, naming what changed, or (``force``) move the
+    manifest and its folders aside and start from none."""
+    recorded = RecordedInputs()
+    built = 0
+    for seed, record in records.items():
+        if record.error is None:
+            recorded.add(record.provenance, f"seed {seed}")
+            built += 1
+    changed = recorded.changes(Path(run.grammar), recorded_options(run.options))
+    if not changed:
+        return records
+    if not run.force:
+        raise UsageError(
+            f"{run.manifest} lists {built} house{'s' * (built != 1)} built from other inputs "
+            f"than this batch's; changed: {'; '.join(changed)}. One dataset is one "
+            f"configuration: resume with the inputs they were built from, choose another "
+            f"--out, or pass --force to start a new manifest (the old one and its seed "
+            f"folders are moved to {run.out}/superseded-<time>/)")
+    _supersede(run, records)
+    return {}
+
+
+def _supersede(run: _Run, records: dict[int, BatchRecord]) -> Path:
+    """Move the manifest and the seed folders it lists (those inside ``out``) into a
+    new ``superseded-<UTC time>[-<shard>]/`` folder of ``out``: nothing is deleted."""
+    stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
+    target = run.out / f"superseded-{stamp}{f'-{run.shard.tag}' if run.shard else ''}"
+    target.mkdir()
+    for seed, record in records.items():
+        folder = record.folder or seed_folder(seed)
+        if "/" not in folder and (run.out / folder).is_dir():
+            os.replace(run.out / folder, target / folder)
+    os.replace(run.manifest, target / run.manifest.name)
+    return target
+
+
+def _run_locked(run: _Run, seeds: range,
                 on_progress: Callable[[int, int], None] | None) -> BatchReport:
-    _remove_staging(out)
-    records = read_manifest(out)
-    _rewrite_manifest(out, records)
+    _remove_staging(run)
+    records = _check_inputs(run, read_manifest(run.out, run.shard))
+    _rewrite_manifest(run.manifest, records)
     built_before = {seed for seed, r in records.items() if r.error is None and seed in seeds}
     todo = (seed for seed in seeds if seed not in built_before)
     finished = len(built_before)
@@ -405,9 +547,14 @@ def _run_locked(grammar: str, out: Path, seeds: range, options: dict[str, Any], 
     start = time.perf_counter()
     built_now = 0
     replaced = False
+    inputs = _inputs(run.grammar, run.options)
+    work = functools.partial(_build_one, run.grammar, out_dir=str(run.out),
+                             build_options=run.options)
     try:
-        for record in _run(grammar, todo, out, options, jobs, time_limit):
-            _append_record(out, record)
+        for record in run.engine.run(todo, work, functools.partial(_failure, run.out, inputs),
+                                     functools.partial(_warm_up, run.options.get("physics", True),
+                                                       str(run.out))):
+            _append_record(run.manifest, record)
             replaced |= record.seed in records
             records[record.seed] = record
             built_now += record.error is None
@@ -415,36 +562,23 @@ def _run_locked(grammar: str, out: Path, seeds: range, options: dict[str, Any], 
             if on_progress:
                 on_progress(finished, len(seeds))
     finally:
-        _remove_staging(out)  # seeds in flight when stopped; their workers are gone
+        _remove_staging(run)  # seeds in flight when stopped; their workers are gone
         if replaced:  # one line per seed again (a rebuilt seed was appended after its failure)
-            _rewrite_manifest(out, records)
+            _rewrite_manifest(run.manifest, records)
     wall = time.perf_counter() - start
     in_range = tuple(records[seed] for seed in sorted(records) if seed in seeds)
     return BatchReport(records=in_range, wall_seconds=wall, built_now=built_now,
                        skipped=len(built_before), seeds=len(seeds))
 
 
-def _run(grammar: str, seeds: Iterator[int], out: Path, options: dict[str, Any], jobs: int,
-         time_limit: float | None) -> Iterator[BatchRecord]:
-    """Yield records as builds finish: in this process (one job, no time limit) or in
-    worker processes (:mod:`cga.batch_pool`), which are all gone when this returns or
-    raises, so their unfinished seeds can be cleaned up."""
-    work = functools.partial(_build_one, grammar, out_dir=str(out), build_options=options)
-    if jobs == 1 and time_limit is None:
-        yield from map(work, seeds)
-        return
-    from .batch_pool import run_pool
-
-    yield from run_pool(seeds, work, functools.partial(_failure, out), jobs=jobs,
-                        time_limit=time_limit,
-                        warm_up=functools.partial(_warm_up, options.get("physics", True)))
-
-
-def _warm_up(physics: bool) -> None:
-    """Import what a build needs before a worker takes its first seed: a second or two
-    that would otherwise count against the first build's time limit."""
+def _warm_up(physics: bool, out_dir: str) -> None:
+    """Import what a build needs before a worker takes its first seed (a second or two
+    that would otherwise count against the first build's time limit), and check that
+    the worker sees the output folder (a Ray worker on another node may not)."""
     import importlib
 
+    if not os.path.isdir(out_dir):
+        raise UsageError(f"the output folder {out_dir} does not exist on {socket.gethostname()}")
     modules = ["cga.pipeline", "cga.meshing", "cga.export", "cga.operations"]
     if physics:
         modules += ["cga.checks.physics", "cga.checks.navigability"]

@@ -1,4 +1,5 @@
-"""The ``cga`` command line: ``cga build``, ``cga check``, ``cga batch`` and ``cga render``.
+"""The ``cga`` command line: ``cga build``, ``cga check``, ``cga batch`` (and ``cga batch
+merge``) and ``cga render``.
 
 Every user error is a :class:`~cga.errors.CGAError`: its message (file:line:column, the
 line and a caret for grammar errors) goes to stderr and the exit status is 2, with no
@@ -18,6 +19,7 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING
 
 from . import __version__
+from .batch_engine import ENGINES
 from .errors import CGAError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -159,10 +161,30 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
                              "gives each value's mean difficulty metrics (sweep.json)")
     parser.add_argument("--seed-start", type=_whole_number, default=0, metavar="S",
                         help="first seed (default 0)")
-    parser.add_argument("--jobs", type=int, default=1, metavar="J",
-                        help="worker processes (default 1, at most 4 per core)")
+    parser.add_argument("--jobs", type=int, metavar="J",
+                        help="worker processes (default 1, at most 4 per core); with --engine "
+                             "ray the CPUs of the local cluster (default: all), or with "
+                             "--address the most builds in flight (default: the cluster's CPUs)")
     parser.add_argument("--time-limit", type=float, metavar="SECONDS",
                         help="stop a build that takes longer and record its seed as failed")
+    parser.add_argument("--engine", choices=ENGINES, default="local",
+                        help="where builds run: worker processes on this machine (local, the "
+                             'default) or a Ray cluster (ray; pip install "cga[ray]")')
+    parser.add_argument("--address", metavar="ADDRESS",
+                        help="with --engine ray: the running cluster to use (host:6379, "
+                             "ray://host:10001, auto); default: start a local one")
+    parser.add_argument("--retries", type=int, metavar="N",
+                        help="with --engine ray: times a build whose worker died is retried "
+                             "before its seed is recorded as failed (default 2)")
+    parser.add_argument("--shard", metavar="I/N",
+                        help="build only the seeds s with s %% N == I, into "
+                             "manifest.shard-I-of-N.jsonl (SLURM: --shard "
+                             "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT); join shards with "
+                             "cga batch merge")
+    parser.add_argument("--force", action="store_true",
+                        help="when the houses in --out were built from other inputs (grammar, "
+                             "tables, models, options, version), move them and their manifest "
+                             "to --out/superseded-<time>/ and start anew instead of refusing")
     parser.add_argument("--out", metavar="DIR",
                         help="output folder (default out/<grammar name>-batch)")
     parser.add_argument("--no-physics", action="store_true",
@@ -177,15 +199,18 @@ def _run_batch(args: argparse.Namespace) -> int:
     import json
     from pathlib import Path
 
-    from .batch import MANIFEST, run_batch
+    from .batch import run_batch
+    from .batch_shard import manifest_name, parse_shard
     from .export import BATCH_FORMATS
 
     out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.grammar).stem}-batch"
     options = {"physics": not args.no_physics, "allow_paths": args.allow_paths,
                "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export])),
                "overrides": _overrides(args)}
+    shard = parse_shard(args.shard) if args.shard else None
     kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
-                  time_limit=args.time_limit, build_options=options)
+                  time_limit=args.time_limit, build_options=options, engine=args.engine,
+                  address=args.address, retries=args.retries, shard=shard, force=args.force)
     if args.sweep:
         return _run_sweep(args, out_dir, kwargs)
     if args.quiet or args.json:
@@ -204,7 +229,8 @@ def _run_batch(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({**data, "out_dir": str(out_dir)}, indent=2))
     elif not args.quiet:
-        print(f"{data['seeds']} seeds in {out_dir}: {data['houses']} built "
+        print(f"{data['seeds']} seeds{f' (shard {shard})' if shard else ''} in {out_dir}: "
+              f"{data['houses']} built "
               f"({data['built_now']} now, {data['skipped']} skipped: built before), "
               f"{data['failed']} failed; {data['validity_rate']:.1%} valid, "
               f"{data['placement_rate']:.1%} of items placed, {data['mean_seconds']:.2f} s mean "
@@ -215,9 +241,38 @@ def _run_batch(args: argparse.Namespace) -> int:
         print(f"seed {failure['seed']} failed: {failure['error']}", file=sys.stderr)
     more = len(report.failed) - len(data["failed_seeds"])
     print(f"{len(report.failed)} seed{'s' * (len(report.failed) != 1)} failed"
-          f"{f' ({more} not listed)' if more else ''}: see {out_dir / MANIFEST} and "
+          f"{f' ({more} not listed)' if more else ''}: see {out_dir / manifest_name(shard)} and "
           f"seed_*/error.txt; a rerun builds them again", file=sys.stderr)
     return 2
+
+
+def _add_merge_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("folders", nargs="+", metavar="DIR",
+                        help="folders holding the shards' manifest.shard-I-of-N.jsonl")
+    parser.add_argument("--out", metavar="DIR",
+                        help="folder for the merged manifest.jsonl (default: the first DIR); "
+                             "house folders stay where they are")
+    _add_output(parser, "print what was merged (JSON) on stdout")
+
+
+def _run_merge(args: argparse.Namespace) -> int:
+    import json
+
+    from .batch_merge import merge_manifests
+
+    report = merge_manifests(args.folders, args.out)
+    data = report.to_dict()
+    if args.json:
+        print(json.dumps(data, indent=2))
+    elif not args.quiet:
+        print(f"{data['seeds']} seeds from {len(data['sources'])} manifests in "
+              f"{data['manifest']}: {data['houses']} built, {data['failed']} failed")
+    if report.failed:
+        print(f"seed{'s' * (len(report.failed) > 1)} "
+              f"{', '.join(map(str, report.failed[:20]))}{' …' * (len(report.failed) > 20)} "
+              f"failed: a rerun of their shards builds them again", file=sys.stderr)
+        return 2
+    return 0
 
 
 def _add_render_arguments(parser: argparse.ArgumentParser) -> None:
@@ -334,7 +389,8 @@ COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None],
                           Callable[[argparse.Namespace], int]]] = {
     "build": ("derive, check and export a building", _add_build_arguments, _run_build),
     "check": ("check a grammar without building it", _add_check_arguments, _run_check),
-    "batch": ("build many seeds into one folder each, with a manifest (resumable)",
+    "batch": ("build many seeds into one folder each, with a manifest (resumable); "
+              "cga batch merge DIR... joins the manifests of shards",
               _add_batch_arguments, _run_batch),
     "render": ("render camera views, depth, semantic and instance masks of a build",
                _add_render_arguments, _run_render),
@@ -354,6 +410,15 @@ def _parser() -> argparse.ArgumentParser:
         sub = commands.add_parser(name, help=help_text, description=help_text)
         add_arguments(sub)
         sub.set_defaults(run=run)
+    return parser
+
+
+def _merge_parser() -> argparse.ArgumentParser:
+    description = ("join the manifests of a sharded batch (cga batch --shard I/N) into one "
+                   "manifest.jsonl, checking for missing shards, duplicate seeds and gaps")
+    parser = argparse.ArgumentParser(prog="cga batch merge", description=description)
+    _add_merge_arguments(parser)
+    parser.set_defaults(run=_run_merge)
     return parser
 
 
@@ -382,7 +447,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     from .interrupts import Terminated, handle_termination
 
-    args = _parser().parse_args(argv)
+    arguments = list(sys.argv[1:] if argv is None else argv)
+    if arguments[:2] == ["batch", "merge"]:  # a command of batch, not a grammar named merge
+        args = _merge_parser().parse_args(arguments[2:])
+    else:
+        args = _parser().parse_args(arguments)
     try:
         with handle_termination():
             return args.run(args)

@@ -33,6 +33,7 @@ except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
 
 __all__ = ["atomic_write", "atomic_output_dir", "remove_stale_staging", "lock_exclusive",
+           "lock_shared",
            "OutputConflictError", "STAGING_PREFIX"]
 
 STAGING_PREFIX = ".cga-staging-"
@@ -113,6 +114,18 @@ def lock_exclusive(fd: int) -> bool:
         return True
     try:
         fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return False
+    return True
+
+
+def lock_shared(fd: int) -> bool:
+    """Take a shared advisory lock on an open file without waiting: any number of
+    holders, but none while someone holds it exclusively (:func:`lock_exclusive`)."""
+    if fcntl is None:
+        return True
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
     except BlockingIOError:
         return False
     return True

@@ -33,6 +33,7 @@ from shapely.geometry.polygon import orient
 from shapely.validation import explain_validity
 
 from .errors import BudgetError, DerivationError, Span, UsageError, excerpt
+from .provenance import note_input
 from .textfiles import read_input_bytes
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -153,6 +154,7 @@ def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polyg
     if sandbox is not None:
         sandbox.check(file, "lot file")
     data = read_input_bytes(file, "lot file", MAX_LOT_FILE_BYTES)
+    note_input(file)  # a batch records what each house was made from
     try:
         document = json.loads(data.decode("utf-8-sig"))
     except UnicodeDecodeError as error:

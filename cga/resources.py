@@ -40,6 +40,7 @@ from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING
 
 from .errors import PATH_LIMIT, ResourceNotFoundError, shown
+from .provenance import note_input
 
 if TYPE_CHECKING:  # pragma: no cover
     from .sandbox import Sandbox
@@ -170,6 +171,15 @@ def resolve_resource(path: str | Path, kind: str = "rules", *,
     ValueError
         ``kind`` is not one of :data:`RESOURCE_KINDS` (a programming error).
     """
+    found = _find_resource(path, kind, base_dir=base_dir, sandbox=sandbox)
+    note_input(found)  # a batch records what each house was made from
+    return found
+
+
+def _find_resource(path: str | Path, kind: str = "rules", *,
+                   base_dir: str | Path | None = None,
+                   sandbox: "Sandbox | None" = None) -> Path:
+    """:func:`resolve_resource` without noting the file as read."""
     try:
         spec = RESOURCE_KINDS[kind]
     except KeyError:

@@ -31,6 +31,7 @@ import numpy as np
 import trimesh
 
 from cga.errors import CGAError, ResourceNotFoundError, excerpt
+from cga.provenance import note_input
 from cga.resources import is_regular_file, shipped_dir
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -222,6 +223,7 @@ class ModelLibrary:
                 if path is not None:
                     if self.sandbox is not None and not self.sandbox.contains(path):
                         raise self.sandbox.refusal("model", str(path))
+                    note_input(path)  # a batch records what each house was made from
                     return path
         raise ResourceNotFoundError("furniture model", name,
                                     [str(d) for d in self.search_dirs])
