@@ -33,7 +33,6 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any, Literal
 
-import networkx as nx
 import numpy as np
 
 from cga.errors import DerivationError, NoSolutionError, excerpt
@@ -377,6 +376,8 @@ def _reachability_note(plan: FloorPlan, pair: tuple[int, int], table: RuleTable)
 
 def _unreachable_error(plan: FloorPlan, pairs: list[tuple[int, int]], sites: DoorSites,
                        table: RuleTable, entry: int) -> NoSolutionError:
+    import networkx as nx  # imported here: `cga check` needs no networkx
+
     graph = nx.Graph(pairs)
     graph.add_nodes_from(r.id for r in plan.rooms)
     reached = nx.node_connected_component(graph, entry)

@@ -22,8 +22,6 @@ from cga.shape import Mass, Shape
 
 from .make_floor import floor_settings
 from .usar.catalogue import CatalogueRoom, load_catalogue
-from .usar.generator import generate
-from .usar.plan import plan_from_layout
 
 __all__ = ["MAX_GRID_CELLS", "MIN_CELL", "UsarFloor"]
 
@@ -96,6 +94,9 @@ class UsarFloor(Operation):
                 f"the footprint is {maxx - minx:.4g} m x {maxz - minz:.4g} m: {columns} x {rows} "
                 f"cells of {cell:g} m; usar_floor needs 4 to {MAX_GRID_CELLS} cells per side",
                 hint="change the lot or the cell size")
+        from .usar.generator import generate  # with networkx: not needed by `cga check`
+        from .usar.plan import plan_from_layout
+
         settings = floor_settings(args, mass.height, ctx.units)
         catalogue = _catalogue(ctx.resolve(args["catalogue"], "rules"), ctx.cache)
         layout = generate(columns, rows, float(args["difficulty"]), catalogue, ctx.rng)

@@ -27,6 +27,7 @@ import manifold3d
 import numpy as np
 import trimesh
 
+from cga.cache import cache_root
 from cga.fsutil import atomic_write
 
 from ._bullet import obj_objects, obj_text, pybullet, quiet_output
@@ -52,9 +53,7 @@ _DECIMALS = 6
 
 def cache_dir() -> Path:
     """The folder holding decompositions: ``$CGA_CACHE_DIR/vhacd`` or ``~/.cache/cga/vhacd``."""
-    root = os.environ.get("CGA_CACHE_DIR")
-    base = Path(root) if root else Path.home() / ".cache" / "cga"
-    return base / "vhacd"
+    return cache_root() / "vhacd"
 
 
 def cache_key(mesh: trimesh.Trimesh) -> str:

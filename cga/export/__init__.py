@@ -5,48 +5,76 @@
 into ``out_dir`` atomically (:func:`cga.fsutil.atomic_write`) and returns their paths.
 ``cga build`` writes :data:`DEFAULT_FORMATS` and whatever ``--export`` adds. A new
 format is one module with its builder and writer, plus one entry here.
+
+A writer's module is imported the first time its format is used: the formats pull in
+heavy libraries (the plan pictures Pillow, the ROS map the occupancy grid and SciPy, the
+views manifold3d), and a build pays only for the formats it writes.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import importlib
+from collections.abc import Callable, Iterator, MutableMapping, Sequence
 from pathlib import Path
 
 from cga.errors import UsageError
 from cga.scene import Scene, SceneNode
 
-from .glb import export_glb
-from .mjcf import export_mjcf
-from .obj import export_obj
-from .plan import export_plans
-from .render import export_render
-from .rosmap import export_rosmap
-from .scene_json import export_scene_json
-from .sdf import export_sdf
-from .urdf import export_urdf
-from .usd import export_usd
-from .view import export_view
-
-__all__ = ["Exporter", "EXPORTERS", "DEFAULT_FORMATS", "BATCH_FORMATS", "OPTIONAL_MODULES",
+__all__ = ["Exporter", "EXPORTERS", "ExporterTable", "DEFAULT_FORMATS", "BATCH_FORMATS", "OPTIONAL_MODULES",
            "check_formats", "missing_packages"]
 
 Exporter = Callable[[Scene, Sequence[SceneNode], Path, str], list[Path]]
 """``export_x(scene, nodes, out_dir, name) -> written paths``."""
 
-EXPORTERS: dict[str, Exporter] = {
-    "glb": export_glb,
-    "json": export_scene_json,
-    "plan": export_plans,
-    "obj": export_obj,
-    "urdf": export_urdf,
-    "sdf": export_sdf,
-    "mjcf": export_mjcf,
-    "usd": export_usd,
-    "map": export_rosmap,
-    "view": export_view,
-    "render": export_render,
-}
-"""Format name → writer."""
+
+
+class ExporterTable(MutableMapping[str, Exporter]):
+    """Format name → writer, where a writer may be given as ``"module:function"`` and is
+    imported on its first lookup (the operation registry's pattern, :mod:`cga.registry`).
+    Iteration order is the order formats were added; assigning a callable registers a
+    writer of one's own."""
+
+    def __init__(self, entries: dict[str, str | Exporter]):
+        self._entries = dict(entries)
+
+    def __getitem__(self, name: str) -> Exporter:
+        entry = self._entries[name]
+        if isinstance(entry, str):
+            module_name, function = entry.split(":")
+            entry = getattr(importlib.import_module(module_name), function)
+            self._entries[name] = entry
+        return entry
+
+    def __setitem__(self, name: str, writer: Exporter) -> None:
+        self._entries[name] = writer
+
+    def __delitem__(self, name: str) -> None:
+        del self._entries[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._entries)
+
+    def __len__(self) -> int:
+        return len(self._entries)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._entries
+
+
+EXPORTERS = ExporterTable({
+    "glb": "cga.export.glb:export_glb",
+    "json": "cga.export.scene_json:export_scene_json",
+    "plan": "cga.export.plan:export_plans",
+    "obj": "cga.export.obj:export_obj",
+    "urdf": "cga.export.urdf:export_urdf",
+    "sdf": "cga.export.sdf:export_sdf",
+    "mjcf": "cga.export.mjcf:export_mjcf",
+    "usd": "cga.export.usd:export_usd",
+    "map": "cga.export.rosmap:export_rosmap",
+    "view": "cga.export.view:export_view",
+    "render": "cga.export.render:export_render",
+})
+"""Format name → writer (imported on first use)."""
 
 DEFAULT_FORMATS: tuple[str, ...] = ("glb", "json", "plan")
 """What ``cga build`` writes without ``--export``."""

@@ -14,6 +14,13 @@ comments give the physical and visual properties::
 
 Vertex colours (``v x y z r g b``) give each part its own colour; trimesh loads them and
 the glTF exporter keeps them.
+
+Parsing a model (trimesh's OBJ reader, the convexity test and volume of every part) costs
+far more than reading arrays back, so the parsed parts are kept in the on-disk cache
+(:mod:`cga.cache`, kind ``models``), keyed by the file's text and trimesh's version. A
+record's trimesh objects are made from the arrays only when something asks for
+:attr:`FurnitureModel.parts` or :attr:`~FurnitureModel.mesh`: ``cga check`` and the layout
+need only sizes, and never import trimesh.
 """
 
 from __future__ import annotations
@@ -21,6 +28,8 @@ from __future__ import annotations
 import io
 import math
 import re
+import zipfile
+from importlib.metadata import version
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -28,13 +37,15 @@ from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
 import numpy as np
-import trimesh
 
+from cga.cache import digest, read_entry, write_entry
 from cga.errors import CGAError, ResourceNotFoundError, excerpt
 from cga.provenance import note_input
 from cga.resources import is_regular_file, shipped_dir
 
 if TYPE_CHECKING:  # pragma: no cover
+    import trimesh
+
     from cga.sandbox import Sandbox
 
 __all__ = [
@@ -42,6 +53,7 @@ __all__ = [
     "DEFAULT_DENSITY",
     "FurnitureModel",
     "ModelFileError",
+    "ModelGeometry",
     "MAX_MODEL_PARTS",
     "MAX_MODEL_VERTICES",
     "ModelLibrary",
@@ -76,6 +88,10 @@ _PARSE_ERRORS = (ValueError, IndexError, KeyError, TypeError, AttributeError,
                  AssertionError, OverflowError, ZeroDivisionError)
 """What trimesh's OBJ reader raises on malformed text (face indices out of range, a
 word where a number belongs, ...)."""
+
+_CACHE_KIND = "models"
+_CACHE_FORMAT = "cga-model-1"
+"""Version of the cached record's layout; part of the cache key."""
 
 _VERTEX_LINE = re.compile(r"^[ \t]*v[ \t]", re.MULTILINE)
 _FACE_LINE = re.compile(r"^[ \t]*f[ \t]", re.MULTILINE)
@@ -128,6 +144,36 @@ def is_convex_part(part: trimesh.Trimesh) -> bool:
 
 
 @dataclass(frozen=True, eq=False)
+class ModelGeometry:
+    """A parsed model's parts as arrays (model frame, metres) and what is measured from
+    them once: the trimesh objects are made on first use and shared by every record of
+    the same file, so treat them as read-only.
+
+    ``colors`` holds each part's RGBA vertex colours (uint8), or None for a part whose
+    file gave none.
+    """
+
+    vertices: tuple[np.ndarray, ...]
+    faces: tuple[np.ndarray, ...]
+    colors: tuple[np.ndarray | None, ...]
+    size: tuple[float, float, float]
+    volume: float
+    convex_parts: bool
+
+    @cached_property
+    def parts(self) -> tuple[trimesh.Trimesh, ...]:
+        import trimesh
+
+        return tuple(trimesh.Trimesh(vertices=v, faces=f, vertex_colors=c, process=False)
+                     for v, f, c in zip(self.vertices, self.faces, self.colors))
+
+    @cached_property
+    def mesh(self) -> trimesh.Trimesh:
+        import trimesh
+
+        return cast(trimesh.Trimesh, trimesh.util.concatenate(self.parts))
+
+@dataclass(frozen=True, eq=False)
 class FurnitureModel:
     """A loaded model in its own frame (metres, y up, front toward −z, origin on the floor
     at the centre of the footprint).
@@ -141,17 +187,27 @@ class FurnitureModel:
 
     name: str
     size: tuple[float, float, float]
-    parts: tuple[trimesh.Trimesh, ...]
-    mesh: trimesh.Trimesh
+    geometry: ModelGeometry
     color: tuple[float, float, float]
     density: float
     path: Path
-    convex_parts: bool = True
 
-    @cached_property
+    @property
+    def parts(self) -> tuple[trimesh.Trimesh, ...]:
+        return self.geometry.parts
+
+    @property
+    def mesh(self) -> trimesh.Trimesh:
+        return self.geometry.mesh
+
+    @property
+    def convex_parts(self) -> bool:
+        return self.geometry.convex_parts
+
+    @property
     def volume(self) -> float:
         """Sum of the parts' volumes (m³); see :func:`part_volume`."""
-        return sum(part_volume(p) for p in self.parts)
+        return self.geometry.volume
 
     @property
     def mass(self) -> float:
@@ -271,11 +327,13 @@ def _load_shared(path: Path) -> FurnitureModel:
 
 
 def load_model(path: Path) -> FurnitureModel:
-    """Load one OBJ file as a :class:`FurnitureModel` (no caching; use a library).
+    """Load one OBJ file as a :class:`FurnitureModel` (no caching in memory; use a library).
 
     Each group or object of the file becomes a part (a file without either is one part).
     The parts are moved so the model's lowest point is at y = 0 and the centre of its
-    footprint at the origin; files made to the convention are not changed.
+    footprint at the origin; files made to the convention are not changed. A file whose
+    bytes were parsed before is read back from the on-disk cache (only valid files are
+    stored, so a hit needs no checks).
 
     Raises
     ------
@@ -283,13 +341,72 @@ def load_model(path: Path) -> FurnitureModel:
         The file cannot be read or parsed, has no faces, or has a bad header value.
     """
     path = Path(path)
-    text = _read_obj_text(path)
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise ModelFileError(path, f"cannot read the OBJ file ({exc.strerror})") from None
+    key = digest(_CACHE_FORMAT, version("trimesh"), data)
+    record = _from_cache(read_entry(_CACHE_KIND, key, ".npz"))
+    if record is None:
+        text = _obj_text(path, data)
+        density, color = _read_header(path, text)
+        record = _parse_geometry(path, text), density, color
+        write_entry(_CACHE_KIND, key, _to_cache(*record), ".npz")
+    geometry, density, color = record
+    return FurnitureModel(name=normalize_name(path.stem), size=geometry.size,
+                          geometry=geometry, color=color, density=density, path=path)
+
+
+_Record = tuple[ModelGeometry, float, tuple[float, float, float]]
+"""A parsed model file: its geometry, density and colour."""
+
+
+def _to_cache(geometry: ModelGeometry, density: float, color: tuple[float, float, float]
+              ) -> bytes:
+    """A parsed file as an ``.npz`` archive of six arrays: the parts' vertices, faces and
+    colours end to end, per part its vertex and face counts and whether it has colours,
+    and the numbers measured once (size, volume, convexity, density, colour)."""
+    counts = np.array([[len(v), len(f), c is not None] for v, f, c in
+                       zip(geometry.vertices, geometry.faces, geometry.colors)], dtype=np.int64)
+    colors = [c if c is not None else np.zeros((len(v), 4), np.uint8)
+              for v, c in zip(geometry.vertices, geometry.colors)]
+    meta = np.array([*geometry.size, geometry.volume, float(geometry.convex_parts), density,
+                     *color])
+    buffer = io.BytesIO()
+    np.savez(buffer, allow_pickle=False, counts=counts, meta=meta,
+             vertices=np.concatenate(geometry.vertices), faces=np.concatenate(geometry.faces),
+             colors=np.concatenate(colors))
+    return buffer.getvalue()
+
+
+def _from_cache(data: bytes | None) -> _Record | None:
+    """The record :func:`_to_cache` wrote, or None (no entry, or a damaged one)."""
+    if data is None:
+        return None
+    try:
+        with np.load(io.BytesIO(data), allow_pickle=False) as archive:
+            counts, meta = archive["counts"], archive["meta"].tolist()
+            vertices, faces, colors = archive["vertices"], archive["faces"], archive["colors"]
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        return None
+    v_ends, f_ends = np.cumsum(counts[:, 0])[:-1], np.cumsum(counts[:, 1])[:-1]
+    geometry = ModelGeometry(
+        vertices=tuple(np.split(vertices, v_ends)), faces=tuple(np.split(faces, f_ends)),
+        colors=tuple(c if has else None for c, has in zip(np.split(colors, v_ends), counts[:, 2])),
+        size=(meta[0], meta[1], meta[2]), volume=meta[3], convex_parts=bool(meta[4]))
+    return geometry, meta[5], (meta[6], meta[7], meta[8])
+
+
+def _parse_geometry(path: Path, text: str) -> ModelGeometry:
+    """Parse the OBJ text with trimesh into a :class:`ModelGeometry` (parts moved to the
+    model frame's convention, volume and convexity measured)."""
+    import trimesh
+
     try:
         scene = trimesh.load_scene(io.BytesIO(text.encode("utf-8")), file_type="obj",
                                    split_groups=True, split_objects=True, group_material=False)
     except _PARSE_ERRORS as exc:
         raise ModelFileError(path, f"cannot read the OBJ file ({excerpt(str(exc))})") from None
-    density, color = _read_header(path, text)
     meshes = [scene.geometry[key] for key in sorted(scene.geometry, key=_natural_key)]
     parts = [m for m in meshes if isinstance(m, trimesh.Trimesh) and len(m.faces)]
     if not parts:
@@ -303,25 +420,33 @@ def load_model(path: Path) -> FurnitureModel:
         move = trimesh.transformations.translation_matrix(offset)
         parts = [p.copy().apply_transform(move) for p in parts]
         mesh = mesh.copy().apply_transform(move)
-    size = tuple(float(e) for e in mesh.extents)
+    extents = mesh.extents
+    size = (float(extents[0]), float(extents[1]), float(extents[2]))
     if min(size) <= 0:
         raise ModelFileError(path, f"the model is flat (size {size[0]:g} × {size[1]:g} × "
                                    f"{size[2]:g} m); every extent must be positive")
-    return FurnitureModel(
-        name=normalize_name(path.stem),
-        size=(size[0], size[1], size[2]),
-        parts=tuple(parts),
-        mesh=mesh,
-        color=color,
-        density=density,
-        path=path,
-        convex_parts=all(is_convex_part(p) for p in parts),
-    )
+    arrays = ModelGeometry(
+        vertices=tuple(np.array(p.vertices, dtype=np.float64) for p in parts),
+        faces=tuple(np.array(p.faces, dtype=np.int64) for p in parts),
+        colors=tuple(_vertex_colors(p) for p in parts),
+        size=size, volume=0.0, convex_parts=True)
+    rebuilt = arrays.parts
+    return replace(arrays, volume=sum(part_volume(p) for p in rebuilt),
+                   convex_parts=all(is_convex_part(p) for p in rebuilt))
 
 
-def _read_obj_text(path: Path) -> str:
-    """The OBJ file as text: UTF-8 (a byte-order mark is dropped), any line ending,
-    within :data:`MAX_MODEL_VERTICES`.
+def _vertex_colors(part: trimesh.Trimesh) -> np.ndarray | None:
+    """The part's RGBA vertex colours, or None when the file gave none. Texture
+    coordinates are not kept: no texture is ever read (see :func:`_obj_text`)."""
+    visual = part.visual
+    if visual is None or visual.kind != "vertex":
+        return None
+    return np.array(getattr(visual, "vertex_colors"), dtype=np.uint8)
+
+
+def _obj_text(path: Path, data: bytes) -> str:
+    """The OBJ file's bytes ``data`` as text: UTF-8 (a byte-order mark is dropped), any
+    line ending, within :data:`MAX_MODEL_VERTICES`.
 
     Reading the text here, rather than letting trimesh open the file, keeps its encoding
     guess (``charset_normalizer``) from failing on bytes that are not text and keeps it
@@ -331,13 +456,9 @@ def _read_obj_text(path: Path) -> str:
     Raises
     ------
     ModelFileError
-        The file cannot be read, is not UTF-8 text (naming the byte), or has too many
-        vertices, faces or parts.
+        The file is not UTF-8 text (naming the byte), or has too many vertices, faces or
+        parts.
     """
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise ModelFileError(path, f"cannot read the OBJ file ({exc.strerror})") from None
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

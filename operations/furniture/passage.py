@@ -35,7 +35,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from networkx.utils import UnionFind
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
@@ -182,6 +181,8 @@ class Passage:
             return None
         areas = shapely.area(pieces).tolist()
         reached = [any(row[k] for row in meets) for k in doors]
+        from networkx.utils import UnionFind  # here: `cga check` needs no networkx
+
         joined = UnionFind(doors)  # a door joins the pieces its approach meets
         touched = []
         for row, area in zip(meets, areas):
@@ -226,6 +227,8 @@ def _groups(meets: np.ndarray) -> list[list[int]]:
     """Doors connected in the empty room, as sorted lists of door indices ordered by
     their lowest door (more than one door each: a door alone cannot be cut off from
     itself)."""
+    from networkx.utils import UnionFind  # here: `cga check` needs no networkx
+
     joined = UnionFind(range(meets.shape[1]))
     for row in meets:
         joined.union(*np.flatnonzero(row).tolist())

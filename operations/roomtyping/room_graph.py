@@ -22,15 +22,16 @@ import heapq
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-
-import networkx as nx
-from networkx.utils import UnionFind
+from typing import TYPE_CHECKING
 
 from cga.errors import NoSolutionError
 from cga.model import OUTSIDE, Door, FloorPlan, Room, Wall
 
 from .doors import Interval, free_intervals
 from .rules import RuleTable, TypeRule
+
+if TYPE_CHECKING:  # pragma: no cover
+    import networkx as nx
 
 __all__ = ["DoorSites", "door_sites", "rule_pairs", "reachability_pairs", "access_pairs",
            "room_graph"]
@@ -134,6 +135,8 @@ def reachability_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: Door
         degree[b] += 1
     degree[entry] += 1  # the front door, or the stair for an upper floor
     area = {room.id: room.area for room in rooms}
+    from networkx.utils import UnionFind  # imported here: `cga check` needs no networkx
+
     components = UnionFind(degree)
     for a, b in pairs:
         components.union(a, b)
@@ -173,6 +176,8 @@ def room_graph(plan: FloorPlan, doors: Sequence[Door]) -> nx.Graph:
     ``type``: the room type, ``"outside"``), one edge per door (attributes ``door``,
     ``wall``, ``reason``, ``state`` and ``angle``: a planner sees which doors it must
     open)."""
+    import networkx as nx
+
     graph = nx.Graph(floor=plan.index)
     graph.add_node(OUTSIDE, type="outside")
     for room in plan.rooms:
