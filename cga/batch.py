@@ -312,7 +312,7 @@ def _build_one(grammar: str, seed: int, out_dir: str, build_options: dict[str, A
             scene = build(grammar, seed=seed, out_dir=staging, quiet=True, **build_options)
         except CGAError as error:
             return _failure(out, _inputs(grammar, build_options, reads), seed,
-                            str(error), time.perf_counter() - start)
+                            error.report(), time.perf_counter() - start)
         except Exception as error:  # a defect must not stop the other seeds of the dataset
             return _failure(out, _inputs(grammar, build_options, reads), seed,
                             f"internal error: {type(error).__name__}: {error}",

@@ -456,7 +456,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         with handle_termination():
             return args.run(args)
     except CGAError as error:
-        print(_bounded(str(error)), file=sys.stderr)
+        print(_bounded(error.report()), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)

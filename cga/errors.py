@@ -11,6 +11,7 @@ came from, not the whole text.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 __all__ = [
     "Span",
@@ -79,7 +80,21 @@ _LINE_WINDOW = 120
 
 
 class CGAError(Exception):
-    """Base class of every error caused by user input."""
+    """Base class of every error caused by user input.
+
+    ``diagnostics`` are the warnings and notes the build gave before it failed (a
+    derivation attaches them), so a cause found early ("made 4 rooms instead of 51")
+    is not lost when a later step fails; :meth:`report` shows them after the message.
+    """
+
+    diagnostics: tuple[Any, ...] = ()
+
+    def report(self) -> str:
+        """The message, then the diagnostics given before the error, one per line."""
+        if not self.diagnostics:
+            return str(self)
+        return (f"{self}\nbefore this error the build reported:"
+                + "".join(f"\n  {d.level} {d}" for d in self.diagnostics))
 
 
 class SourceError(CGAError):

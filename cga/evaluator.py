@@ -43,7 +43,7 @@ from shapely.geometry import Polygon
 
 from . import ast
 from .binding import bind_arguments
-from .errors import (BudgetError, DerivationError, ResourceAccessError, ResourceNotFoundError,
+from .errors import (BudgetError, CGAError, DerivationError, ResourceAccessError, ResourceNotFoundError,
                      SourceError, Span, UsageError)
 from .expressions import UNKNOWN, Namespace, Value, describe, evaluate, shape_attributes
 from .lot import DEFAULT_LOT, lot_from_call, rectangle
@@ -422,15 +422,19 @@ class Evaluator:
         run = _Run(variables=variables)
         terminals: list[Shape] = []
         stack = [root]
-        while stack:
-            node = stack.pop()
-            rule = self.rules.get(node.shape.symbol)
-            if rule is None:
-                terminals.append(node.shape)
-                continue
-            node.rule = rule
-            node.children = self._apply_rule(node.shape, rule, run)
-            stack.extend(reversed(node.children))
+        try:
+            while stack:
+                node = stack.pop()
+                rule = self.rules.get(node.shape.symbol)
+                if rule is None:
+                    terminals.append(node.shape)
+                    continue
+                node.rule = rule
+                node.children = self._apply_rule(node.shape, rule, run)
+                stack.extend(reversed(node.children))
+        except CGAError as error:  # keep what the derivation said before it failed
+            error.diagnostics = (*run.diagnostics, *error.diagnostics)
+            raise
         return Derivation(root=root, terminals=terminals, variables=variables,
                           units=self.units, lot=footprint, diagnostics=run.diagnostics,
                           timings=dict(run.timings))

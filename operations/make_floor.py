@@ -33,6 +33,7 @@ from cga.operation import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
 from .floorplan.bsp import FixedFace, partition
 from .floorplan.layout import LayoutRecipe
+from .floorplan.openings import window_shortfall
 from .floorplan.treemap import thesis_partition
 from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,
                                     circulation_faces)
@@ -188,6 +189,9 @@ class MakeFloor(Operation):
             ctx.report(Diagnostic("warning", "make_floor",
                                   f"made {len(result.dcel.faces)} rooms instead of {split + 1}: "
                                   f"{result.shortfall}", floor=index))
+        windows = window_shortfall(plan.walls, settings, index)
+        if windows is not None:
+            ctx.report(windows)
         if not thesis:  # the thesis' partition is the same every time: nothing to re-draw
             plan = plan.with_changes(layout=LayoutRecipe(
                 tuple(ring), split + 1, tuple(fixed), min_width, min_area, door_reach, settings,

@@ -350,8 +350,19 @@ def _node(node: SceneNode) -> dict[str, Any]:
         "kind": node.kind,
         "static": node.static,
         "bbox": {"min": bounds[0].tolist(), "max": bounds[1].tolist()},
-        "convex_parts": len(node.parts),
+        "convex_parts": _convex_parts(node),
     }
+
+
+def _convex_parts(node: SceneNode) -> int:
+    """How many convex solids stand for the node in physics: its parts when they are
+    convex, else the V-HACD pieces the physics check used (read from the disk cache the
+    check filled; made and cached here when the build ran without checks)."""
+    if node.item is None or node.convex_parts:
+        return len(node.parts)
+    from cga.collision import collision_parts
+
+    return len(collision_parts(node))
 
 
 def _polygon(geometry: Polygon | MultiPolygon) -> dict[str, Any]:

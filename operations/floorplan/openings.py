@@ -12,9 +12,9 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from cga.model import FloorSettings, Opening, Wall, Window
+from cga.model import Diagnostic, FloorSettings, Opening, Wall, Window
 
-__all__ = ["MIN_GAP", "window_centres", "place_windows"]
+__all__ = ["MIN_GAP", "window_centres", "place_windows", "window_shortfall"]
 
 MIN_GAP = 0.3
 """Least clear distance (m) between a window and a corner or another window."""
@@ -85,3 +85,34 @@ def place_windows(walls: tuple[Wall, ...],
                                   settings.window_sill))
         out_walls.append(replace(wall, openings=wall.openings + openings))
     return tuple(out_walls), tuple(windows)
+
+
+def window_shortfall(walls: tuple[Wall, ...], settings: FloorSettings,
+                     floor: int) -> Diagnostic | None:
+    """What :func:`place_windows` left out of a floor's outer walls, in words (None
+    when every outer wall segment got ``settings.windows_per_wall`` windows).
+
+    A warning when no window fits at all (a window wider than every wall's free span),
+    else an info: short segments take fewer windows by design, but the user asked for
+    more and should be able to see where the count went."""
+    outer = [w for w in walls if w.outer]
+    asked = settings.windows_per_wall * len(outer)
+    placed = sum(o.kind == "window" for w in outer for o in w.openings)
+    if asked <= 0 or placed >= asked:
+        return None
+    longest = max(w.length for w in outer) - 2 * settings.wall_thickness
+    if placed == 0:
+        return Diagnostic(
+            "warning", "make_floor",
+            f"no window fits: a window {settings.window_width:.2f} m wide with "
+            f"{MIN_GAP:.2f} m on each side needs {settings.window_width + 2 * MIN_GAP:.2f} m of "
+            f"wall, and the longest outer wall has {longest:.2f} m free between its corners; "
+            f"the floor has no windows", floor=floor)
+    short = sum(sum(o.kind == "window" for o in w.openings) < settings.windows_per_wall
+                for w in outer)
+    return Diagnostic(
+        "info", "make_floor",
+        f"placed {placed} of {asked} windows ({settings.windows_per_wall} per outer wall "
+        f"segment): {short} of {len(outer)} segments are too short for all of theirs "
+        f"(each window takes {settings.window_width + MIN_GAP:.2f} m of wall: its width and "
+        f"a {MIN_GAP:.2f} m gap)", floor=floor)

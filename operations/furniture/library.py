@@ -456,16 +456,11 @@ def _obj_text(path: Path, data: bytes) -> str:
     Raises
     ------
     ModelFileError
-        The file is not UTF-8 text (naming the byte), or has too many vertices, faces or
-        parts.
+        The file is not UTF-8 text outside comments (naming the line and column), has
+        too many vertices, faces or parts, or a face corner names no vertex defined
+        before it (naming the line).
     """
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        line = data.count(b"\n", 0, exc.start) + 1
-        raise ModelFileError(path, f"line {line}: not UTF-8 text (byte {exc.start} cannot be "
-                                   f"decoded); save the model as UTF-8 OBJ") from None
-    text = text.replace("\r\n", "\n").replace("\r", "\n")
+    text = _decode_obj(path, data).replace("\r\n", "\n").replace("\r", "\n")
     vertices = len(_VERTEX_LINE.findall(text))
     faces = len(_FACE_LINE.findall(text))
     if vertices > MAX_MODEL_VERTICES or faces > 2 * MAX_MODEL_VERTICES:
@@ -476,7 +471,54 @@ def _obj_text(path: Path, data: bytes) -> str:
     if parts > MAX_MODEL_PARTS:
         raise ModelFileError(path, f"{parts:,} groups or objects; a furniture model may have "
                                    f"at most {MAX_MODEL_PARTS:,} parts (docs/limits.md)")
+    _check_face_indices(path, text)
     return text
+
+
+def _decode_obj(path: Path, data: bytes) -> str:
+    """UTF-8 text; a comment line in another encoding (a Latin-1 note from an old
+    exporter) is read with its undecodable bytes replaced, since comments carry no
+    geometry. Anywhere else such a byte is an error naming its line and column."""
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        pass
+    lines = data.removeprefix(b"\xef\xbb\xbf").split(b"\n")
+    out = []
+    for number, line in enumerate(lines, start=1):
+        try:
+            out.append(line.decode("utf-8"))
+        except UnicodeDecodeError as exc:
+            if line.lstrip().startswith(b"#"):
+                out.append(line.decode("utf-8", errors="replace"))
+                continue
+            raise ModelFileError(path, f"line {number}, column {exc.start + 1}: not UTF-8 text "
+                                       f"(byte 0x{line[exc.start]:02x}); save the model as "
+                                       f"UTF-8 OBJ") from None
+    return "\n".join(out)
+
+
+def _check_face_indices(path: Path, text: str) -> None:
+    """Every face corner names a vertex defined before it (OBJ indices count from 1;
+    negative ones count back from the last vertex so far), else an error naming the line."""
+    vertices = 0
+    for number, line in enumerate(text.split("\n"), start=1):
+        words = line.split()
+        if not words:
+            continue
+        if words[0] == "v":
+            vertices += 1
+        elif words[0] == "f":
+            for corner in words[1:]:
+                field = corner.split("/")[0]
+                try:
+                    index = int(field)
+                except ValueError:
+                    raise ModelFileError(path, f"line {number}: face corner {excerpt(corner)} "
+                                               f"is not a vertex number") from None
+                if not (1 <= index <= vertices or -vertices <= index <= -1):
+                    raise ModelFileError(path, f"line {number}: face corner {index} names no "
+                                               f"vertex ({vertices} defined before this line)")
 
 
 def _read_header(path: Path, text: str) -> tuple[float, tuple[float, float, float]]:

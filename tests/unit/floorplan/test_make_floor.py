@@ -50,7 +50,9 @@ def test_apply_attaches_a_plan_and_keeps_the_shape():
     plan = child.plan
     validate_plan(plan)
     assert (plan.index, plan.elevation, plan.height, plan.is_top) == (1, 3.0, 3.0, False)
-    assert len(plan.rooms) == 5 and reports == []
+    assert len(plan.rooms) == 5
+    # short wall segments take fewer windows than asked: said, as an info, nothing more
+    assert all(r.level == "info" and "windows" in r.message for r in reports)
     s = plan.settings
     assert (s.wall_thickness, s.windows_per_wall, s.window_width, s.window_height, s.window_sill,
             s.door_width, s.door_height) == (0.2, 2, 1.2, 1.2, 0.9, 0.9, 2.1)
@@ -77,7 +79,8 @@ def test_cut_range_one_half_is_the_thesis_partition():
     # Algorithm 8: z = 5 first, then x = 7 in one half, z = 7.5 in a quarter, x = 7 in the
     # other half: leaves in the order they were made, each across its maker's axis
     assert rooms == [(0, 0, 7, 5), (0, 5, 7, 7.5), (0, 7.5, 7, 10), (7, 0, 14, 5), (7, 5, 14, 10)]
-    assert child.plan.layout is None and reports == []  # nothing to re-draw
+    assert child.plan.layout is None  # nothing to re-draw
+    assert not [r for r in reports if r.level != "info"]
 
 
 def test_each_floor_its_own_layout_unless_same_layout():
@@ -99,7 +102,7 @@ def test_unreachable_split_is_reported():
     [child] = MakeFloor().apply(storey(box(0, 0, 6, 5), floor=2), args(split=6), ctx)
     n = len(child.plan.rooms)
     assert n < 7
-    [d] = reports
+    [d] = [r for r in reports if r.level != "info"]
     assert (d.level, d.stage, d.floor) == ("warning", "make_floor", 2)
     assert d.message.startswith(f"made {n} rooms instead of 7: ")
     assert "narrower than 2.40 m" in d.message
@@ -165,7 +168,7 @@ def test_storeys_through_the_evaluator():
         cores = [p.room(p.core_room) for p in plans]
         assert [(c.type, c.circulation) for c in cores] == [("Stair", True)] * 2
         assert cores[0].polygon.symmetric_difference(cores[1].polygon).area < 1e-9
-        assert result.diagnostics == []
+        assert [d for d in result.diagnostics if d.level != "info"] == []
         for p in plans:
             validate_plan(p)
 
@@ -201,7 +204,7 @@ def test_corridor_modes_carve_one_circulation_room_and_split_plus_one_rooms(mode
         validate_plan(plan)
         circulation = [r for r in plan.rooms if r.circulation]
         assert len(circulation) == 1 and circulation[0].id == 0
-        assert len(plan.rooms) - 1 == 6 and reports == []
+        assert len(plan.rooms) - 1 == 6 and not [r for r in reports if r.level != "info"]
         hall = circulation[0].polygon
         for room in plan.rooms[1:]:  # every room keeps a door's length of wall on it
             assert room.polygon.boundary.intersection(hall.boundary).length >= 0.9 + 2 * 0.3 - 1e-9
