@@ -202,8 +202,9 @@ def _hatch(drawing: Drawing, paper: _Paper, region: Polygon, layer: str = "rooms
 
 
 def _item_label(item: FurnitureItem) -> str:
-    """'chair1' → 'chair', 'SofaTable' → 'sofa table', 'tableBig' → 'table big'."""
-    base = re.sub(r"\d+$", "", item.name).strip() or item.model
+    """'chair1' → 'chair', 'desk#3' → 'desk', 'SofaTable' → 'sofa table', 'tableBig' →
+    'table big'."""
+    base = re.sub(r"#?\d+$", "", item.name).strip() or item.model
     return re.sub(r"(?<=[a-z])(?=[A-Z])", " ", base).replace("_", " ").lower()
 
 

@@ -42,7 +42,7 @@ from cga.model import front_vector
 from .clearance import Box, quarter_turn_towards
 from .layout import Conflict, ItemSpec, Layout, Pose, nearest_in
 
-__all__ = ["Edge", "Corner", "room_edges", "convex_corners", "Placer"]
+__all__ = ["Edge", "Corner", "room_edges", "convex_corners", "Placer", "flush", "flush_box"]
 
 _TOLERANCE = 1e-9
 _FREE_SAMPLES = 8
@@ -138,12 +138,18 @@ def convex_corners(edges: list[Edge]) -> list[Corner]:
     return corners
 
 
+def flush_box(spec: ItemSpec, rotation: int) -> Box:
+    """The box around ``spec``'s body and clearances at ``rotation`` (relative to its
+    centre): what must fit between the walls."""
+    return _bbox([p.box for p in spec.parts(rotation)])
+
+
 def _bbox(boxes: list[Box]) -> Box:
     return (min(b[0] for b in boxes), min(b[1] for b in boxes),
             max(b[2] for b in boxes), max(b[3] for b in boxes))
 
 
-def _flush(bbox: Box, normal: np.ndarray, line: float) -> tuple[int, float]:
+def flush(bbox: Box, normal: np.ndarray, line: float) -> tuple[int, float]:
     """(axis, centre coordinate) that puts ``bbox`` against the wall at ``line`` whose
     inward normal is ``normal``."""
     axis = 0 if abs(normal[0]) > 0.5 else 1
@@ -269,6 +275,23 @@ class Placer:
             return self.beside(spec, parent)
         return self.in_front(spec, parent)
 
+    def seat_family(self, spec: ItemSpec, pose: Pose) -> bool:
+        """Add ``spec`` at ``pose`` with all its descendants seated by their rules, or
+        leave the layout as it was and return False (:mod:`.desks` lays out desks with
+        their chairs this way)."""
+        if self._conflict(spec, pose) is not None:
+            return False
+        self.layout.add(spec, pose)
+        seated: list[str] = []
+        for child in self._descendants(spec.name):
+            if self._place_child(child) is not None:
+                for name in (*seated, spec.name):
+                    self.layout.remove(name)
+                    self.sides.pop(name, None)
+                return False
+            seated.append(child.name)
+        return True
+
     def _descendants(self, name: str) -> list[ItemSpec]:
         out = []
         for child in self.children.get(name, []):
@@ -322,7 +345,7 @@ class Placer:
                     bbox = _bbox([p.box for p in spec.parts(rotation)])
                     coords = [0.0, 0.0]
                     for edge in corner.edges:
-                        axis, value = _flush(bbox, edge.normal, edge.line)
+                        axis, value = flush(bbox, edge.normal, edge.line)
                         coords[axis] = value
                     pose = Pose(coords[0], coords[1], rotation)
                     conflict = self._conflict(spec, pose)
@@ -367,7 +390,7 @@ class Placer:
                 assert axis is not None
                 parts = spec.parts(rotation)
                 body = parts[0].box
-                _, fixed = _flush(_bbox([p.box for p in parts]), edge.normal, edge.line)
+                _, fixed = flush(_bbox([p.box for p in parts]), edge.normal, edge.line)
                 lo, hi = edge.span
                 lo, hi = lo - body[axis], hi - body[axis + 2]
                 preferred = min(max(start[axis], lo), hi)
@@ -609,7 +632,7 @@ class Placer:
             parts = spec.parts(rotation)
             bbox = _bbox([p.box for p in parts])
             body = parts[0].box
-            _, fixed = _flush(bbox, edge.normal, edge.line)
+            _, fixed = flush(bbox, edge.normal, edge.line)
             gap = abs(fixed - front_line) - (body[axis + 2] - body[axis]) / 2
             if gap < spec.rule.min_pair_distance - 1e-9:
                 first = None

@@ -26,7 +26,9 @@ Meaning of the columns beyond the thesis' own words:
 
 Optional columns beyond the thesis: ``sizeJitter`` (one fraction, or three for width,
 height and depth, by which each placed item's extents vary; :mod:`.variation`) and
-``isMovable`` (whether disorder may move the item; empty: the chairs; :mod:`.disorder`).
+``isMovable`` (whether disorder may move the item; empty: the chairs; :mod:`.disorder`)
+and ``layout`` (``perimeter``: as many copies of the item as fit along the walls, each
+with its children; :mod:`.desks`).
 
 Errors are :class:`~cga.errors.RuleTableError` naming the file, row and column.
 """
@@ -76,12 +78,14 @@ _COLUMNS: dict[str, tuple[str, ...]] = {
     "is_on_the_side": ("isontheside",),
     "size_jitter": ("sizejitter",),
     "is_movable": ("ismovable", "movable"),
+    "layout": ("layout",),
 }
 _HEADER_TO_FIELD = {alias: key for key, aliases in _COLUMNS.items() for alias in aliases}
 _ROW_NUMBER_COLUMNS = {"regel", "rule", "item", "#", "no", "nr"}
 _DISTANCES = ("min_pair_distance", "max_pair_distance", "clearance_side", "clearance_front",
               "clearance_back")
 _DETAIL_KINDS = ("door", "window")
+_LAYOUTS = ("perimeter",)
 MAX_SIZE_JITTER = 0.5
 """Largest ``sizeJitter`` fraction: an extent may vary by at most half of itself."""
 _MOVABLE_MODELS = re.compile(r"chair$")
@@ -114,6 +118,7 @@ class FurnitureRule:
     is_on_the_side: bool = False
     size_jitter: tuple[float, float, float] = (0.0, 0.0, 0.0)
     is_movable: bool | None = None
+    layout: str = ""
 
     @property
     def is_child(self) -> bool:
@@ -338,6 +343,14 @@ def _convert(key: str, cell: str, decimal_comma: bool, file: str, row: int,
     lowered = cell.lower()
     if key == "size_jitter":
         return _size_jitter(cell, decimal_comma, file, row, header)
+    if key == "layout":
+        if lowered in _NULL:
+            return ""
+        if lowered not in _LAYOUTS:
+            raise RuleTableError(f"unknown layout {excerpt(cell)}; expected "
+                                 f"{' or '.join(map(repr, _LAYOUTS))} or an empty cell",
+                                 file=file, row=row, column=header)
+        return lowered
     if kind == "bool | None":
         if lowered in _NULL:
             return None
@@ -449,6 +462,11 @@ def _check_flags(rule: FurnitureRule, file: str) -> None:
                                                                 "isOnTheSide")):
         if flag and rule.pair_with is None:
             fail(f"{column} needs a parent in PairWith", column)
+    if rule.layout == "perimeter" and (rule.pair_with is not None or rule.is_in_corner
+                                       or rule.non_collision):
+        fail("layout 'perimeter' lays out as many copies of a free parent as fit along the "
+             "walls; it cannot be a child (PairWith), a corner item or non-colliding",
+             "layout")
     if rule.max_gap is not None and rule.max_pair_distance < rule.min_pair_distance:
         fail(f"maxPairDistance {rule.max_pair_distance:g} is below minPairDistance "
              f"{rule.min_pair_distance:g}", "maxPairDistance")

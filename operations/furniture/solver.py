@@ -18,6 +18,8 @@ Every solid item must leave a passage ``passage_width`` wide between the room's 
 and keep most of the room reachable (:mod:`.passage`); a pose that breaks this is
 rejected like a collision.
 
+A row with ``layout`` = ``perimeter`` gets as many copies as fit along the walls
+(:mod:`.desks`, the MSU office desk layouts), laid out when the loop reaches the row.
 Each item stands at its own size (``sizeJitter``, :mod:`.variation`); with ``disorder``
 the movable items of the finished layout are turned and shifted a little, each pose
 tested like any other (:mod:`.disorder`).
@@ -39,7 +41,8 @@ from cga.model import Diagnostic, FloorPlan, FurnitureItem
 from .clearance import Keepout, OpeningStrip, door_keepouts, door_strips, window_strips
 from .details import detail_items
 from .disorder import disturb
-from .layout import ItemSpec, Layout
+from .desks import MAX_COPIES, DeskLayout, Family, copies, lay_out_desks
+from .layout import ItemSpec, Layout, Pose
 from .passage import PASSAGE_WIDTH, Passage
 from .placement import Placer
 from .rules import FurnitureRules
@@ -108,9 +111,47 @@ def _within_floor(site: RoomSite, specs: Sequence[ItemSpec]
     return kept, crowded
 
 
+@dataclass(frozen=True)
+class _Copies:
+    """The perimeter rows of a room: head name → its families (:mod:`.desks`), and the
+    names of the extra copies (``#2`` on), which the solver only places through them."""
+
+    families: Mapping[str, Sequence[Family]]
+    extra: frozenset[str]
+
+
+def _with_copies(site: RoomSite, specs: Sequence[ItemSpec]) -> tuple[list[ItemSpec], _Copies]:
+    """``specs`` with the copies of every ``layout`` = ``perimeter`` row (and of its
+    children) right after the row's own family; as many as could cover the free floor
+    with desks, at most :data:`.desks.MAX_COPIES`."""
+    heads = [s for s in specs if s.rule.layout == "perimeter"]
+    if not heads:
+        return list(specs), _Copies({}, frozenset())
+    children: dict[str, list[ItemSpec]] = {}
+    for spec in specs:
+        if spec.rule.pair_with is not None:
+            children.setdefault(spec.rule.pair_with, []).append(spec)
+
+    def descendants(name: str) -> list[ItemSpec]:
+        return [d for c in children.get(name, []) for d in (c, *descendants(c.name))]
+
+    families: dict[str, list[Family]] = {}
+    for head in heads:
+        count = min(MAX_COPIES, max(1, int(site.interior.area // (head.width * head.depth))))
+        families[head.name] = copies(head, descendants(head.name), count)
+    out: list[ItemSpec] = []
+    for spec in specs:
+        out.append(spec)
+        if spec.name in families:
+            out.extend(c for family in families[spec.name][1:] for c in family.specs)
+    extra = frozenset(c.name for fs in families.values() for f in fs[1:] for c in f.specs)
+    return out, _Copies(families, extra)
+
+
 def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
-            iterations: int) -> dict[str, tuple[float, float]]:
-    movers = [s for s in specs if s.rule.pair_with is None and not s.rule.non_collision]
+            iterations: int, groups: _Copies) -> dict[str, tuple[float, float]]:
+    movers = [s for s in specs if s.rule.pair_with is None and not s.rule.non_collision
+              and s.name not in groups.families and s.name not in groups.extra]
     if not movers:
         return {}
     half = np.array([(s.width / 2, s.depth / 2) for s in movers])
@@ -122,13 +163,26 @@ def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
 
 
 def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
-                iterations: int, passage: Passage | None
+                iterations: int, passage: Passage | None, groups: _Copies,
+                desk_layouts: dict[tuple[tuple[str, Pose], ...], DeskLayout]
                 ) -> tuple[Placer, list[tuple[str, str]]]:
-    starts = _starts(site, specs, rng, iterations)
+    starts = _starts(site, specs, rng, iterations, groups)
     layout = Layout(site.interior, list(site.keepouts), list(site.windows), passage)
     placer = Placer(layout, specs, rng)
     left_out = []
     for spec in specs:
+        if spec.name in groups.extra:
+            continue
+        if spec.name in groups.families:
+            # the same items placed before give the same desks: lay them out once
+            key = tuple(sorted((name, pose) for name, (_, pose) in layout.placed.items()))
+            desks = desk_layouts.get(key)
+            if desks is None:
+                desks = desk_layouts[key] = lay_out_desks(placer, groups.families[spec.name],
+                                                          site.doors)
+            else:
+                for item, pose in desks.poses:
+                    layout.add(item, pose)
         reason = placer.place(spec, starts.get(spec.name))
         if reason is not None:
             left_out.append((spec.name, reason))
@@ -188,11 +242,14 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     if not 0 <= disorder <= 1:
         raise ValueError(f"disorder must be in [0, 1], got {disorder:g}")
     specs, crowded = _within_floor(site, specs)
+    specs, groups = _with_copies(site, specs)
     passage = Passage(site.interior, site.doors, passage_width) if passage_width > 0 else None
     best: tuple[Placer, list[tuple[str, str]]] | None = None
+    desk_layouts: dict[tuple[tuple[str, Pose], ...], DeskLayout] = {}
     stale = 0
     for _ in range(max(1, attempts)):
-        placer, left_out = _solve_once(site, specs, rng, steering_iterations, passage)
+        placer, left_out = _solve_once(site, specs, rng, steering_iterations, passage, groups,
+                                       desk_layouts)
         if best is None or len(placer.layout.placed) > len(best[0].layout.placed):
             best, stale = (placer, left_out), 0
         else:

@@ -1,0 +1,166 @@
+"""Office desk layouts (``layout`` = ``perimeter``, MSU): hand-computed desk counts for
+fixture rooms, the brute force only for rooms of at most four walls, no desk in a door
+swing, copies named and checked like any item."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+from shapely.geometry import Polygon
+
+from cga.authoring import furnish_floor
+from cga.errors import RuleTableError
+from cga.model import OUTSIDE, Door, FloorPlan, FloorSettings, Room, Wall
+from cga.operations.furniture import desks
+from cga.operations.furniture.library import ModelLibrary, default_library
+from cga.operations.furniture.placement import room_edges
+from cga.operations.furniture.rules import parse_furniture_rules
+
+from furniture_checks import furniture_violations
+
+DESK_ONLY = ("Room;Name;isAlongWall;clearanceFront;layout\n"
+             "Office;desk;true;0.6;perimeter\n")
+"""A desk 1.2 m wide and 0.6 m deep (the box model below) with 0.6 m free in front."""
+
+
+def box_obj(path: Path, width: float, height: float, depth: float) -> None:
+    x, z = width / 2, depth / 2
+    corners = [(sx * x, y, sz * z) for sx in (-1, 1) for y in (0, height) for sz in (-1, 1)]
+    faces = [(1, 2, 4), (1, 4, 3), (5, 7, 8), (5, 8, 6), (1, 5, 6), (1, 6, 2),
+             (3, 4, 8), (3, 8, 7), (1, 3, 7), (1, 7, 5), (2, 6, 8), (2, 8, 4)]
+    path.write_text("\n".join(["g body", *(f"v {a:g} {b:g} {c:g}" for a, b, c in corners),
+                               *(f"f {a} {b} {c}" for a, b, c in faces)]) + "\n",
+                    encoding="utf-8")
+
+
+@pytest.fixture
+def desk_library(tmp_path) -> ModelLibrary:
+    box_obj(tmp_path / "desk.obj", 1.2, 0.75, 0.6)
+    return default_library([tmp_path])  # the door leaf's model is the shipped one
+
+
+@pytest.fixture
+def desk_table(tmp_path) -> Path:
+    path = tmp_path / "desks.csv"
+    path.write_text(DESK_ONLY, encoding="utf-8")
+    return path
+
+
+@pytest.fixture
+def office(room_plan):
+    def make(width: float, depth: float, wall: int, at: float = 0.5) -> FloorPlan:
+        """An office whose free floor is ``width`` × ``depth`` m (0.2 m walls), with a
+        bare 0.9 m opening in ``wall`` (0 bottom, 1 right, 2 top, 3 left) at ``at`` of
+        its length: its keep-out is a 0.9 m square in front of it."""
+        plan = room_plan(width + 0.4, depth + 0.4, room_type="Office",
+                         doors=((wall, at, "start"),), windows=())
+        return plan.with_changes(doors=tuple(replace(d, leaf=False) for d in plan.doors))
+
+    return make
+
+
+def desk_count(plan: FloorPlan, table: Path, library: ModelLibrary) -> int:
+    furnished = furnish_floor(plan, table, seed=0, library=library)
+    assert furniture_violations(furnished, table, passage_width=0) == []
+    return sum(1 for item in furnished.furniture if item.model == "desk")
+
+
+# Hand counts. A desk with its front clearance is 1.2 m square; bodies may not stand in
+# another desk's clearance or in the door's keep-out square.
+#
+# 6.0 x 1.3, door in the left wall: too shallow for two rows (1.3 < 2 x 1.2), and the
+#   keep-out (0.9 m deep, 0.2..1.1 across) leaves no desk left of x = 0.9. Every desk
+#   takes 1.2 m of the 5.1 m beyond: at most 4; a row along a long wall holds 4.
+# 3.0 x 1.5, door in the right wall: a row desk must stay left of the keep-out
+#   (x < 2.1), so rows give 1 (two rows would stand in each other's clearance); a
+#   back-to-back bank from the bottom wall (desks turned, backs meeting at x = 1.2,
+#   0.6..1.8) holds 2: only the brute force finds it.
+# 2.6 x 1.3, door in the left wall: 1.7 m beyond the keep-out, one desk.
+# 4.0 x 1.3, door in the middle of the bottom wall: no desk fits above the keep-out
+#   (x 1.55..2.45, 0.9 deep, 0.4 m left), and the 1.55 m on each side take one desk
+#   each (any desk takes 1.2 m of x in a room this shallow): 2.
+@pytest.mark.parametrize("width, depth, wall, expected", [
+    (6.0, 1.3, 3, 4),
+    (3.0, 1.5, 1, 2),
+    (2.6, 1.3, 3, 1),
+    (4.0, 1.3, 0, 2),
+])
+def test_hand_computed_desk_counts(width, depth, wall, expected, office, desk_table,
+                                   desk_library):
+    assert desk_count(office(width, depth, wall), desk_table, desk_library) == expected
+
+
+def test_the_bank_beats_the_rows_only_through_the_brute_force(office, desk_table,
+                                                              desk_library, monkeypatch):
+    monkeypatch.setattr(desks, "brute_force_strategies", lambda *args: [])
+    assert desk_count(office(3.0, 1.5, 1), desk_table, desk_library) == 1
+
+
+def l_office() -> FloorPlan:
+    """An L-shaped office of six walls: 6 x 5 m with the 3 x 2.5 m top-right corner cut."""
+    outline = [(0.0, 0.0), (6.0, 0.0), (6.0, 2.5), (3.0, 2.5), (3.0, 5.0), (0.0, 5.0)]
+    walls = tuple(Wall(i, outline[i], outline[(i + 1) % 6], True, (0, OUTSIDE), 0.2)
+                  for i in range(6))
+    polygon = Polygon(outline)
+    interior = polygon.buffer(-0.2, join_style="mitre")
+    door = Door(0, 0, (0, OUTSIDE), walls[0].point_at(1.5), 0.9, 2.1, 0, "start", True, "front")
+    return FloorPlan(0, 0.0, 3.0, polygon, FloorSettings(wall_thickness=0.2),
+                     (Room(0, polygon, interior, "Office"),), walls, doors=(door,))
+
+
+def test_brute_force_runs_only_for_rooms_of_four_walls_or_fewer(office, desk_table,
+                                                                desk_library, monkeypatch):
+    calls: list[int] = []
+    real = desks.brute_force_strategies
+
+    def spy(edges, door, width):
+        calls.append(len(edges))
+        return real(edges, door, width)
+
+    monkeypatch.setattr(desks, "brute_force_strategies", spy)
+    assert desk_count(l_office(), desk_table, desk_library) > 0
+    assert calls == []
+    desk_count(office(4.0, 3.0, 0), desk_table, desk_library)
+    assert calls and set(calls) == {4}
+    with pytest.raises(ValueError, match="at most 4 walls"):
+        real(room_edges(l_office().room(0).interior), None, 1.2)
+
+
+def test_shipped_office_desks_never_stand_in_a_door_swing(room_plan, rules_dir, library,
+                                                          tmp_path):
+    table = tmp_path / "office.csv"
+    table.write_text((rules_dir / "furniture_office.csv").read_text(encoding="utf-8"),
+                     encoding="utf-8")
+    for width, depth, doors in [(4.0, 3.0, ((0, 0.3, "start"),)),
+                                (5.0, 4.0, ((0, 0.5, "end"), (1, 0.7, "start"))),
+                                (6.5, 3.5, ((3, 0.4, "start"),)),
+                                (3.2, 5.0, ((2, 0.5, "end"),))]:
+        plan = room_plan(width, depth, room_type="Office", doors=doors, windows=((2, 0.3),))
+        for seed in range(3):
+            furnished = furnish_floor(plan, table, seed=seed, library=library)
+            names = [i.name for i in furnished.furniture if i.model == "desk"]
+            assert len(names) >= 2, (width, depth, seed)
+            assert furniture_violations(furnished, table) == [], (width, depth, seed)
+
+
+def test_copies_are_named_and_seated_with_their_children(room_plan, rules_dir, library):
+    plan = room_plan(6.0, 5.0, room_type="Office", windows=())
+    furnished = furnish_floor(plan, rules_dir / "furniture_office.csv", seed=1,
+                              library=library)
+    items = {i.name: i for i in furnished.furniture if not i.is_detail}
+    desks_ = sorted(n for n in items if n.split("#")[0] == "desk")
+    assert desks_[:2] == ["desk", "desk#2"] and len(desks_) >= 4
+    for name in desks_:
+        chair = items[name.replace("desk", "officechair")]
+        assert chair.parent == name
+    assert not [d for d in furnished.diagnostics if "desk" in d.message]
+
+
+def test_a_perimeter_row_must_be_a_free_parent():
+    text = ("Room;Name;isAlongWall;hasPair;PairWith;layout\n"
+            "Office;desk;true;true;;\n"
+            "Office;chair;false;true;desk;perimeter\n")
+    with pytest.raises(RuleTableError, match="row 3, column 'layout'"):
+        parse_furniture_rules(text, file="t.csv")
