@@ -24,7 +24,10 @@ Settling runs for ``settle_seconds`` of simulated time at ``timestep``, and stop
 once every item has been at rest (speed below 1 mm/s and spin below 0.01 rad/s) for
 0.1 s: at those speeds an item covers less than the thresholds in what is left of the
 settle time, so the early stop does not hide a failure, and a furnished house settles
-in a tenth of the time. An item balanced so finely that it starts to tip too slowly to
+in a tenth of the time. Storeys settle independently: nothing of one storey's furniture
+touches another's, so each storey's items stop (their poses are taken and their bodies
+leave the simulation) once that storey has rested, and the cost of a building grows with
+the sum of its storeys' settling times, not with the slowest storey times them all. An item balanced so finely that it starts to tip too slowly to
 notice in that time is caught statically: its centre of mass must lie over the hull of
 the points it stands on (its vertices within 5 mm of its lowest point).
 """
@@ -34,16 +37,18 @@ from __future__ import annotations
 import hashlib
 import math
 import os
+import re
 import tempfile
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import shapely
 import trimesh
+from trimesh.triangles import mass_properties
 
 from cga.collision import BULLET_MARGIN, CONTACT_SHRINK, collision_parts, shrink_part
 from cga.scene import Scene, SceneNode
@@ -321,10 +326,18 @@ def check_physics(scene: Scene, nodes: Sequence[SceneNode] | None = None, *,
     )
 
 
+_STOREY = re.compile(r"^floor(\d+)/")
+"""The storey of a node from its path (``floor1/room3_Kitchen/furniture/sofa``)."""
+
+_Pose = tuple[np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray]]
+"""Position, quaternion (x, y, z, w) and bounding box of a body."""
+
+
 @dataclass
 class _Body:
     """A dynamic item in the simulation: body id, mass, starting centre of mass, lowest
-    point, and how far its centre of mass lies outside what it stands on."""
+    point, how far its centre of mass lies outside what it stands on, and its pose once
+    its storey has settled."""
 
     uid: int
     mass: float
@@ -332,6 +345,12 @@ class _Body:
     bottom: float
     path: str
     support_gap: float
+    final: _Pose | None = None
+
+    @property
+    def storey(self) -> int | None:
+        match = _STOREY.match(self.path)
+        return int(match.group(1)) if match else None
 
 
 @dataclass
@@ -374,13 +393,14 @@ class _World:
 
     def add_item(self, node: SceneNode, cache_dir: Path | None) -> _Body:
         """A dynamic compound body for a furniture item, its origin at the parts' centroid."""
-        parts = collision_parts(node, cache_dir)
-        volumes = np.array([max(float(p.volume), 0.0) for p in parts])
-        centres = np.array([p.center_mass if v > 0 else p.centroid for p, v in zip(parts, volumes)])
+        parts = [_Part(np.asarray(p.vertices, dtype=float), np.asarray(p.faces, dtype=np.int64))
+                 for p in collision_parts(node, cache_dir)]
+        volumes, centres = _mass_properties(parts)
         weights = volumes if volumes.sum() > 0 else np.ones(len(parts))
         centroid = (centres * weights[:, None]).sum(axis=0) / weights.sum()
         mass = _mass(node, float(volumes.sum()))
-        text = obj_text([_shrunk(p) for p in parts], offset=centroid)
+        text = obj_text([_Part(shrink_part(p.vertices), p.faces) for p in parts],
+                        offset=centroid)
         path = self.folder / f"{hashlib.sha1(text.encode()).hexdigest()}.obj"
         if not path.exists():
             path.write_text(text, encoding="utf-8")
@@ -431,20 +451,39 @@ class _World:
         return out
 
     def settle(self, bodies: Sequence[_Body], seconds: float) -> float:
-        """Step until ``seconds`` have passed or every body has rested for a while;
-        returns the simulated time."""
+        """Step until ``seconds`` have passed or every storey's bodies have rested for a
+        while; returns the simulated time (of the last storey to rest).
+
+        A storey that has rested is done: its bodies' poses are kept in ``body.final``
+        and the bodies are removed, so later steps simulate only the storeys still
+        moving. Every body has ``final`` set on return."""
         steps = max(1, round(seconds / self.timestep))
         check = max(1, round(_CHECK_EVERY / self.timestep))
         needed = max(1, math.ceil(_REST_SECONDS / (check * self.timestep)))
-        resting = 0
+        groups: dict[int | None, list[_Body]] = {}
+        for body in bodies:
+            groups.setdefault(body.storey, []).append(body)
+        resting = dict.fromkeys(groups, 0)
         for step in range(1, steps + 1):
             self.pb.stepSimulation(physicsClientId=self.client)
             if step % check:
                 continue
-            resting = resting + 1 if self._all_resting(bodies) else 0
-            if resting >= needed:
+            for storey, group in list(groups.items()):
+                resting[storey] = resting[storey] + 1 if self._all_resting(group) else 0
+                if resting[storey] >= needed:
+                    self._retire(groups.pop(storey))
+            if not groups:
                 return step * self.timestep
+        for group in groups.values():
+            self._retire(group)
         return steps * self.timestep
+
+    def _retire(self, group: Sequence[_Body]) -> None:
+        """Keep the bodies' poses and take them out of the simulation."""
+        for body in group:
+            body.final = self.pose(body)
+        for body in group:
+            self.pb.removeBody(body.uid, physicsClientId=self.client)
 
     def _all_resting(self, bodies: Sequence[_Body]) -> bool:
         for body in bodies:
@@ -453,7 +492,7 @@ class _World:
                 return False
         return True
 
-    def pose(self, body: _Body) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray]]:
+    def pose(self, body: _Body) -> _Pose:
         """Position, quaternion (x, y, z, w) and bounding box of a body now."""
         position, orientation = self.pb.getBasePositionAndOrientation(
             body.uid, physicsClientId=self.client)
@@ -466,18 +505,39 @@ def _centroid(node: SceneNode) -> np.ndarray:
     return (lo + hi) / 2
 
 
-def _support_gap(parts: Sequence[trimesh.Trimesh], centroid: np.ndarray) -> float:
+class _Part(NamedTuple):
+    """A convex part as arrays (what :func:`obj_text` and the mass properties read)."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+
+def _mass_properties(parts: Sequence[_Part]) -> tuple[np.ndarray, np.ndarray]:
+    """Each part's volume (m³, 0 for a part that encloses none) and centre of mass (its
+    area centroid when it has no volume), computed from the arrays by trimesh's own
+    routine without building a mesh object per part."""
+    volumes, centres = [], []
+    for part in parts:
+        triangles = part.vertices[part.faces]
+        props = mass_properties(triangles, skip_inertia=True)
+        volume = max(float(props.volume), 0.0)
+        if volume > 0:
+            centre = np.asarray(props.center_mass, dtype=float)
+        else:
+            mesh = trimesh.Trimesh(vertices=part.vertices, faces=part.faces, process=False)
+            centre = np.asarray(mesh.centroid, dtype=float)
+        volumes.append(volume)
+        centres.append(centre)
+    return np.array(volumes), np.array(centres)
+
+
+def _support_gap(parts: Sequence[_Part], centroid: np.ndarray) -> float:
     """Plan distance (m) from the centre of mass to the hull of the points the item
     stands on: its vertices within :data:`_FOOT` of its lowest point (0 when over it)."""
     vertices = np.concatenate([np.asarray(p.vertices, dtype=float) for p in parts])
     feet = vertices[vertices[:, 1] <= vertices[:, 1].min() + _FOOT][:, [0, 2]]
     hull = shapely.MultiPoint(feet).convex_hull
     return float(hull.distance(shapely.Point(centroid[0], centroid[2])))
-
-
-def _shrunk(part: trimesh.Trimesh) -> trimesh.Trimesh:
-    """The part with each face moved in by :data:`_SHRINK` (:func:`cga.collision.shrink_part`)."""
-    return trimesh.Trimesh(vertices=shrink_part(part.vertices), faces=part.faces, process=False)
 
 
 def _mass(node: SceneNode, volume: float) -> float:
@@ -493,7 +553,7 @@ def _mass(node: SceneNode, volume: float) -> float:
 def _item_result(node: SceneNode, body: _Body, world: _World, support: float | None,
                  depth: float, other: str | None, penetration_tol: float, move_tol: float,
                  rot_tol_deg: float) -> ItemPhysics:
-    position, quaternion, (_, top) = world.pose(body)
+    position, quaternion, (_, top) = body.final if body.final is not None else world.pose(body)
     displacement = float(np.linalg.norm(position - body.start))
     rotation = math.degrees(2.0 * math.acos(min(1.0, abs(float(quaternion[3])))))
     up = _rotate(quaternion, np.array([0.0, 1.0, 0.0]))

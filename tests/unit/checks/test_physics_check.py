@@ -126,6 +126,19 @@ def test_settling_stops_early_once_everything_rests(kit, room):
     assert report.simulated_seconds < report.settle_seconds
 
 
+def test_storeys_settle_independently(kit, room):
+    """A storey that has rested leaves the simulation: its items' results do not depend
+    on another storey still moving, and the other storey is simulated to the end."""
+    plan, nodes = room
+    table = kit.box_item("table", (1.2, 0.75, 0.8), (2.0, 2.0))
+    alone = check_physics(kit.scene_of(plan), nodes + [table])
+    chair = kit.box_item("chair", (0.5, 0.9, 0.5), (6.0, 2.0), lift=0.5, floor=1)
+    both = check_physics(kit.scene_of(plan), nodes + [table, chair])
+    assert _item(both, "table") == _item(alone, "table")
+    assert both.simulated_seconds > alone.simulated_seconds
+    assert _item(both, "chair").displacement == pytest.approx(0.5, abs=0.01)
+
+
 def test_report_is_json_ready(kit, room):
     plan, nodes = room
     chair = kit.box_item("chair", (0.5, 0.9, 0.5), (2.0, 2.0), lift=0.5)
