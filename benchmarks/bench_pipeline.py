@@ -9,12 +9,9 @@ Three parts, each printed as Markdown tables (pasted into ``benchmarks/RESULTS.m
     the minimum and median of each stage of ``Scene.timings`` (``derive`` includes the
     operations listed under it) and of the whole build, wall clock and CPU.
 ``layout``
-    A 14 m x 10 m storey cut into 10 rooms (``make_floor`` with split 9), typed with the
-    shipped ``house_types.csv`` (``type_rooms``: typing, room graph, doors), on
-    ``--layout-seeds`` seeds. The p95 over the seeds is computed per sweep; the sweep is
-    repeated ``--repeats`` times and the minimum and median p95 are reported, wall clock
-    and CPU (a few milliseconds are at the mercy of the scheduler on a busy machine).
-    Target: p95 < 10 ms.
+    :mod:`bench_layout`: a 10-room floor (make_floor + type_rooms, re-draws included) on
+    ``--layout-seeds`` seeds, ``--repeats`` sweeps, CPU time and reference loops.
+    Target: p95 ≤ 10 ms.
 ``house``
     ``demos/house.grammar`` (two storeys, typed and furnished) built without physics on
     ``--house-seeds`` seeds, ``--repeats`` times each, writing the files of ``cga build``
@@ -22,7 +19,7 @@ Three parts, each printed as Markdown tables (pasted into ``benchmarks/RESULTS.m
     Target: median < 0.5 s.
 
     python benchmarks/bench_pipeline.py [--repeats 5] [--parts demos,layout,house]
-                                        [--layout-seeds 500] [--house-seeds 10] [--no-physics]
+                                        [--layout-seeds 300] [--house-seeds 10] [--no-physics]
                                         [--formats glb,json,plan]
 
 Timings are wall clock (``time.perf_counter``) unless marked CPU
@@ -32,25 +29,16 @@ Timings are wall clock (``time.perf_counter``) unless marked CPU
 from __future__ import annotations
 
 import argparse
-import math
 import statistics
 import tempfile
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-import numpy as np
-from shapely.geometry import box
-
+import bench_layout
+from bench_layout import p95
 from cga.pipeline import build
-from cga.errors import NoSolutionError
 from cga.export import DEFAULT_FORMATS
-from cga.operation import OperationContext
-from cga.operations.make_floor import MakeFloor
-from cga.operations.roomtyping.rules import RuleTable, load_rule_table
-from cga.operations.type_rooms import type_plan
-from cga.resources import resolve_resource
-from cga.shape import Mass, Shape
 
 ROOT = Path(__file__).resolve().parents[1]
 DEMOS = sorted((ROOT / "demos").glob("*.grammar"))
@@ -61,21 +49,7 @@ STAGES = ("parse", "derive", "make_floor", "type_rooms", "add_furniture", "meshi
 """Rows of the per-demo table: pipeline stages and, indented under derive, its operations."""
 OPERATIONS = {"make_floor", "type_rooms", "add_furniture"}
 
-LAYOUT_TARGET_MS = 10.0
 HOUSE_TARGET_S = 0.5
-
-FLOOR_ARGS = {p.name: p.default for p in MakeFloor.params if not p.required} | {
-    "split": 9, "wallWidth": 0.2, "windows": (2, 1.2, 1.2), "doorWidth": 0.9,
-    "doorHeight": 2.1, "min_room_width": 2.0, "min_room_area": 4.0,
-    "corridor": "spine", "corridor_width": 1.6, "corridor_position": 0.42}
-"""make_floor arguments of the layout benchmark (the house demo's hall and sizes, 10 rooms
-besides the hall)."""
-
-
-def p95(values: Sequence[float]) -> float:
-    """The nearest-rank 95th percentile."""
-    ordered = sorted(values)
-    return ordered[max(0, math.ceil(0.95 * len(ordered)) - 1)]
 
 
 def _ms(seconds: float) -> str:
@@ -117,51 +91,6 @@ def bench_demos(repeats: int, physics: bool, work: Path) -> None:
         print()
 
 
-def _layout_once(seed: int, shape: Shape, table: RuleTable) -> tuple[float, float, bool]:
-    """(wall, CPU) seconds of make_floor + type_rooms on one seed, and whether typing
-    found a solution."""
-    rng = np.random.default_rng(seed)
-    ctx = OperationContext(rng=rng, units=1.0, resolve=lambda path, kind="rules": path,
-                           report=lambda diagnostic: None, span=None, successor_count=1,
-                           seed=seed)
-    wall, cpu = time.perf_counter(), time.process_time()
-    [child] = MakeFloor().apply(shape, FLOOR_ARGS, ctx)
-    try:
-        type_plan(child.plan, table, rng)
-        typed = True
-    except NoSolutionError:
-        typed = False
-    return time.perf_counter() - wall, time.process_time() - cpu, typed
-
-
-def bench_layout(repeats: int, seeds: int) -> None:
-    mass = Mass(box(0, 0, 14, 10), 0.0, 3.0)
-    shape = Shape("Floor", ("Lot", "Floor"), mass.scope(), mass, {"floor": 0})
-    table = load_rule_table(resolve_resource("house_types.csv", "rules"))
-    _layout_once(0, shape, table)
-    sweeps: dict[str, list[list[float]]] = {"wall": [], "CPU": []}
-    failed = 0
-    for _ in range(repeats):
-        runs = [_layout_once(seed, shape, table) for seed in range(seeds)]
-        sweeps["wall"].append([run[0] for run in runs])
-        sweeps["CPU"].append([run[1] for run in runs])
-        failed += sum(not run[2] for run in runs)
-    print(f"## Layout of a 10-room floor (14 m x 10 m, a hall and make_floor split 9 + "
-          f"type_rooms with house_types.csv: typing, doors, re-draws included; {seeds} seeds "
-          f"x {repeats} sweeps; ms)\n")
-    print("| clock | min | median | p95 (best sweep) | p95 (median sweep) | max |")
-    print("|---|---:|---:|---:|---:|---:|")
-    for clock, per_sweep in sweeps.items():
-        every = [t for sweep in per_sweep for t in sweep]
-        p95s = [p95(sweep) for sweep in per_sweep]
-        print(f"| {clock} | {_ms(min(every))} | {_ms(statistics.median(every))} | "
-              f"{_ms(min(p95s))} | {_ms(statistics.median(p95s))} | {_ms(max(every))} |")
-    median_p95 = statistics.median(p95(sweep) for sweep in sweeps["wall"])
-    print(f"\nTyping without a solution: {failed / repeats:g} of {seeds} seeds (timed too). "
-          f"Target p95 < {LAYOUT_TARGET_MS:g} ms: {_verdict(median_p95, LAYOUT_TARGET_MS / 1000)} "
-          f"({_ms(median_p95)} ms wall, median sweep)\n")
-
-
 def bench_house(repeats: int, seeds: int, formats: Sequence[str], work: Path) -> None:
     _timed_build(HOUSE, 0, work / "house-warmup", False, formats)
     walls: list[float] = []
@@ -193,7 +122,7 @@ def _format_list(text: str) -> list[str]:
 
 PARTS: dict[str, Callable[[argparse.Namespace, Path], None]] = {
     "demos": lambda args, work: bench_demos(args.repeats, not args.no_physics, work),
-    "layout": lambda args, work: bench_layout(args.repeats, args.layout_seeds),
+    "layout": lambda args, work: bench_layout.report(args.layout_seeds, args.repeats),
     "house": lambda args, work: bench_house(args.repeats, args.house_seeds, args.formats, work),
 }
 
@@ -203,7 +132,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5, help="repeats of every measurement")
     parser.add_argument("--parts", default=",".join(PARTS),
                         help=f"comma-separated parts to run ({', '.join(PARTS)})")
-    parser.add_argument("--layout-seeds", type=int, default=500)
+    parser.add_argument("--layout-seeds", type=int, default=300)
     parser.add_argument("--house-seeds", type=int, default=10)
     parser.add_argument("--formats", type=_format_list, default=list(DEFAULT_FORMATS),
                         help="files the house part writes, comma-separated "

@@ -311,7 +311,7 @@ def _rectangle_window(ring: list[Point], k: int, rules: _Rules,
             else:
                 at_hi += 1
         for kept, sign in ((at_lo, 1), (at_hi, -1)):
-            short = rules.min_contact - kept * depth
+            short = rules.min_contact - _WINDOW_SLACK - kept * depth
             if short <= 0:
                 continue
             if not along:
