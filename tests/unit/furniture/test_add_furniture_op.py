@@ -146,3 +146,20 @@ def test_absurd_steering_iterations_are_refused(tmp_path):
     text = grammar('add_furniture("furniture_thesis.csv", 0.2>1.2>1.2, 0.9, 2.1, 1000000000)')
     with pytest.raises(DerivationError, match="steeringIterations must be at most 10,000"):
         furnished(tmp_path, text)
+
+
+@pytest.mark.parametrize("value", ["1.5", "-0.1"])
+def test_disorder_outside_zero_to_one_is_refused(tmp_path, value):
+    text = grammar(f'add_furniture("furniture_house.csv", disorder={value})')
+    with pytest.raises(DerivationError, match=r"disorder must be in \[0, 1\]") as caught:
+        furnished(tmp_path, text)
+    assert caught.value.span is not None and caught.value.span.line == 7  # the call
+
+
+def test_disorder_from_a_grammar_variable_turns_the_chairs(tmp_path):
+    text = grammar('add_furniture("furniture_thesis.csv", 0.2>1.2>1.2, 0.9, 2.1, 10, 20, '
+                   'disorder = mess)').replace("Rules:\n", "Variables:\n  mess = 1;\nRules:\n")
+    chairs = [i for i in furnished(tmp_path, text).furniture if i.model == "chair"]
+    tidy = [i for i in furnished(tmp_path, text.replace("mess = 1", "mess = 0")).furniture
+            if i.model == "chair"]
+    assert chairs and any(c.yaw for c in chairs) and not any(c.yaw for c in tidy)
