@@ -66,7 +66,8 @@ class AddFurniture(Operation):
         (:mod:`cga.operations.furniture.passage`).
     disorder (keyword):
         Noise in [0, 1] (default 0: tidy) turning and shifting the movable items
-        (the chairs, or the rows marked ``isMovable``) off their tidy pose, each
+        (the chairs, or the rows marked ``isMovable``; a row's own ``disorder`` wins) off
+        their tidy pose, each
         disturbed pose checked like any other (:mod:`cga.operations.furniture.disorder`;
         the TFG's chair noise, 0.4 in its robot runs).
 

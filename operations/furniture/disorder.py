@@ -18,6 +18,9 @@ its parent stays in front of it, within its width. A rejected sample is drawn ag
 to :data:`SAMPLES` times, then at half and a quarter of the noise; when nothing fits the
 item keeps its tidy pose. An item with children of its own stays put (they were placed
 relative to it), and so does a non-colliding one.
+
+A table row may set its own ``disorder`` (the TFG gives one value per room): its items
+take that instead of the build's.
 """
 
 from __future__ import annotations
@@ -88,7 +91,8 @@ def disturb(layout: Layout, specs: Sequence[ItemSpec], movable: set[str],
     rng:
         The room's random stream.
     disorder:
-        The noise scale in [0, 1]; 0 leaves the layout as it is and draws nothing.
+        The noise scale in [0, 1]; a row's own ``disorder`` replaces it for its items.
+        Items at 0 stay as they are and draw nothing.
 
     Returns
     -------
@@ -100,12 +104,11 @@ def disturb(layout: Layout, specs: Sequence[ItemSpec], movable: set[str],
     At most ``3 × SAMPLES`` conflict tests per movable item, each the cost of one
     placement test.
     """
-    if disorder <= 0:
-        return 0
     moved = 0
     for spec in specs:
         entry = layout.placed.get(spec.name)
-        if entry is None or spec.name not in movable or spec.rule.non_collision:
+        noise = disorder if spec.rule.disorder is None else spec.rule.disorder
+        if entry is None or noise <= 0 or spec.name not in movable or spec.rule.non_collision:
             continue
         if any(c in layout.placed for c in related.get(spec.name, frozenset())
                if c != spec.rule.pair_with):
@@ -116,8 +119,8 @@ def disturb(layout: Layout, specs: Sequence[ItemSpec], movable: set[str],
         chosen = None
         for scale in _SCALES:
             for _ in range(SAMPLES):
-                yaw = disorder * scale * MAX_YAW * float(rng.uniform(-1.0, 1.0))
-                radius = disorder * scale * MAX_SHIFT * math.sqrt(float(rng.random()))
+                yaw = noise * scale * MAX_YAW * float(rng.uniform(-1.0, 1.0))
+                radius = noise * scale * MAX_SHIFT * math.sqrt(float(rng.random()))
                 angle = float(rng.uniform(0.0, 2 * math.pi))
                 pose = Pose(tidy.x + radius * math.cos(angle), tidy.z + radius * math.sin(angle),
                             tidy.rotation, yaw)

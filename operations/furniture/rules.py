@@ -27,8 +27,9 @@ Meaning of the columns beyond the thesis' own words:
 Optional columns beyond the thesis: ``sizeJitter`` (one fraction, or three for width,
 height and depth, by which each placed item's extents vary; :mod:`.variation`) and
 ``isMovable`` (whether disorder may move the item; empty: the chairs; :mod:`.disorder`)
-and ``layout`` (``perimeter``: as many copies of the item as fit along the walls, each
-with its children; :mod:`.desks`).
+``layout`` (``perimeter``: as many copies of the item as fit along the walls, each
+with its children; :mod:`.desks`) and ``disorder`` (0..1 for the row's items, instead of
+the build's ``disorder``).
 
 Errors are :class:`~cga.errors.RuleTableError` naming the file, row and column.
 """
@@ -79,6 +80,7 @@ _COLUMNS: dict[str, tuple[str, ...]] = {
     "size_jitter": ("sizejitter",),
     "is_movable": ("ismovable", "movable"),
     "layout": ("layout",),
+    "disorder": ("disorder",),
 }
 _HEADER_TO_FIELD = {alias: key for key, aliases in _COLUMNS.items() for alias in aliases}
 _ROW_NUMBER_COLUMNS = {"regel", "rule", "item", "#", "no", "nr"}
@@ -119,6 +121,7 @@ class FurnitureRule:
     size_jitter: tuple[float, float, float] = (0.0, 0.0, 0.0)
     is_movable: bool | None = None
     layout: str = ""
+    disorder: float | None = None
 
     @property
     def is_child(self) -> bool:
@@ -351,6 +354,14 @@ def _convert(key: str, cell: str, decimal_comma: bool, file: str, row: int,
                                  f"{' or '.join(map(repr, _LAYOUTS))} or an empty cell",
                                  file=file, row=row, column=header)
         return lowered
+    if key == "disorder":
+        if lowered in _NULL:
+            return None
+        value = _number(cell, decimal_comma, file, row, header, "a disorder")
+        if value > 1:
+            raise RuleTableError(f"disorder is a number in 0..1, got {excerpt(cell)}",
+                                 file=file, row=row, column=header)
+        return value
     if kind == "bool | None":
         if lowered in _NULL:
             return None
@@ -363,21 +374,25 @@ def _convert(key: str, cell: str, decimal_comma: bool, file: str, row: int,
         raise RuleTableError(f"expected true/false (or 1/0), got {excerpt(cell)}", file=file, row=row,
                              column=header)
     if kind == "float":
-        if lowered in _NULL:
-            return 0.0
-        text = cell.replace(",", ".") if decimal_comma else cell
-        try:
-            value = float(text)
-        except ValueError:
-            raise RuleTableError(f"expected a number, got {excerpt(cell)}", file=file, row=row,
-                                 column=header) from None
-        if value < 0 or value != value or value == float("inf"):
-            raise RuleTableError(f"expected a distance ≥ 0, got {excerpt(cell)}", file=file, row=row,
-                                 column=header)
-        return value
+        return 0.0 if lowered in _NULL else _number(cell, decimal_comma, file, row, header)
     if key == "pair_with":
         return None if lowered in _NULL else cell
     return "" if lowered in _NULL else cell
+
+
+def _number(cell: str, decimal_comma: bool, file: str, row: int, header: str,
+            what: str = "a distance") -> float:
+    """A finite number ≥ 0 (a decimal comma when the delimiter is not a comma)."""
+    text = cell.replace(",", ".") if decimal_comma else cell
+    try:
+        value = float(text)
+    except ValueError:
+        raise RuleTableError(f"expected a number, got {excerpt(cell)}", file=file, row=row,
+                             column=header) from None
+    if value < 0 or value != value or value == float("inf"):
+        raise RuleTableError(f"expected {what} ≥ 0, got {excerpt(cell)}", file=file, row=row,
+                             column=header)
+    return value
 
 
 def _size_jitter(cell: str, decimal_comma: bool, file: str, row: int, header: str

@@ -197,3 +197,24 @@ def test_disorder_outside_the_unit_interval_is_refused(room_plan, library, rules
     with pytest.raises(UsageError, match=r"disorder must be in \[0, 1\], got 1.5"):
         furnish_floor(meeting_room(room_plan), rules_dir / "furniture_office.csv",
                       disorder=1.5, library=library)
+
+
+def test_a_row_sets_its_own_disorder(room_plan, library, rules_dir, tmp_path):
+    text = (rules_dir / "furniture_office.csv").read_text(encoding="utf-8").splitlines()
+    header, rows = text[0] + ";disorder", text[1:]
+    rows = [r + (";1" if r.split(";")[:2] == ["Meetingroom", "chair2"] else ";")
+            for r in rows]
+    table = tmp_path / "office.csv"
+    table.write_text("\n".join([header, *rows]) + "\n", encoding="utf-8")
+    turned = set()
+    for seed in range(4):
+        plan = furnish_floor(meeting_room(room_plan), table, seed=seed, library=library)
+        turned |= {i.name for i in plan.furniture if i.yaw}
+        assert furniture_violations(plan, table, max_yaw=MAX_YAW) == []
+    assert turned == {"chair2"}
+
+
+def test_a_row_disorder_above_one_names_row_and_column():
+    error = error_of("Office;chair;false;false;;false;0;0;1.5", header=HEADER + ";disorder")
+    assert "disorder is a number in 0..1, got '1.5'" in str(error)
+    assert "row 2, column 'disorder'" in str(error)
