@@ -188,13 +188,19 @@ def read_manifest(out_dir: Path, shard: Shard | None = None) -> dict[int, BatchR
     records: dict[int, BatchRecord] = {}
     if not path.exists():
         return records
+    shared: dict[Any, dict[str, Any]] = {}
     with open(path, encoding="utf-8", errors="replace") as lines:
         for line in lines:
             try:
                 record = BatchRecord(**json.loads(line))
-            except (ValueError, TypeError):
+                inputs = record.provenance
+                key = (tuple(inputs.get("files", {}).items()), json.dumps(inputs.get("options")),
+                       inputs.get("grammar"), inputs.get("version"))
+            except (ValueError, TypeError, AttributeError):
                 continue
-            records[record.seed] = record
+            # most lines record the same inputs: one dict for all of them (a million
+            # lines took 9 GB, two thirds of it in copies of the same digests)
+            records[record.seed] = replace(record, provenance=shared.setdefault(key, inputs))
     return {seed: record for seed, record in records.items()
             if (Path(out_dir) / (record.folder or seed_folder(seed))).is_dir()}
 
@@ -340,7 +346,13 @@ def _lock(path: Path, out: Path, shared: bool, busy: Callable[[str], str]) -> It
         raise ExportError(f"cannot write into the output folder {out}: "
                           f"{error.strerror or error}") from None
     try:
-        if not (lock_shared if shared else lock_exclusive)(fd):
+        try:
+            locked = (lock_shared if shared else lock_exclusive)(fd)
+        except OSError as error:  # a network file system mounted without locks
+            raise ExportError(f"cannot lock {path}: {error.strerror or error} (the output "
+                              f"folder's file system must support flock: on Lustre mount "
+                              f"with -o flock, on NFS use version 4)") from None
+        if not locked:
             owner = os.read(fd, 4096).decode("utf-8", "replace").strip()
             raise UsageError(busy(owner))
         if not shared:

@@ -43,6 +43,9 @@ __all__ = ["DEFAULT_RETRIES", "RayEngine"]
 DEFAULT_RETRIES = 2
 """Retries of a task whose worker died or that raised (``--retries``)."""
 
+_POLL = 1.0
+"""Longest wait for a result, in seconds, before this process handles signals."""
+
 _INSTALL = 'the Ray engine needs Ray: pip install "cga[ray]"'
 
 
@@ -104,8 +107,10 @@ class RayEngine:
         """Connect or start a cluster; True if this engine must shut it down."""
         if ray.is_initialized():
             return False
+        # builds are quiet and report through their results; Ray's own notices would
+        # break the progress bar
         options: dict[str, Any] = {"include_dashboard": False, "log_to_driver": False,
-                                   "logging_level": logging.WARNING, "configure_logging": True}
+                                   "logging_level": logging.ERROR}
         if self.address is None:
             options["num_cpus"] = self.jobs
         try:
@@ -120,6 +125,14 @@ class RayEngine:
         if self.address is not None and self.jobs is not None:
             cpus = min(cpus, self.jobs)
         return cpus if self.time_limit is not None else 2 * cpus
+
+    def _reason(self, error: BaseException, over_time: bool, seconds: float) -> str:
+        """Why a seed failed whose task raised (after its retries) or was cancelled."""
+        if over_time:
+            return (f"stopped after {seconds:.1f} s: over the time limit of "
+                    f"{self.time_limit:g} s per build (--time-limit)")
+        return (f"the build's Ray task failed {self.retries + 1} "
+                f"time{'s' * (self.retries > 0)}: {_first_line(error)}")
 
     def run(self, seeds: Iterator[int], build: Callable[[int], Any],
             failed: Callable[[int, str, float], Any],
@@ -148,33 +161,32 @@ class RayEngine:
                     pending[task.remote(shared, seed)] = (seed, time.monotonic())
                 if not pending:
                     return
-                timeout = None
+                timeout = _POLL  # wake up now and then: Ctrl-C and SIGTERM are handled here
                 running = [t for ref, (_, t) in pending.items() if ref not in cancelled]
                 if self.time_limit is not None and running:
-                    timeout = max(0.0, min(running) + self.time_limit - time.monotonic())
+                    timeout = min(timeout, max(0.0, min(running) + self.time_limit -
+                                               time.monotonic()))
                 done, _ = ray.wait(list(pending), num_returns=1, timeout=timeout)
+                if done:  # every finished build at once: a wait costs O(builds in flight)
+                    done, _ = ray.wait(list(pending), num_returns=len(pending), timeout=0)
                 now = time.monotonic()
-                if not done:  # a build is over its time: Ray kills its worker
+                if not done:  # a build over its time limit: Ray kills its worker
                     for ref, (_, submitted) in pending.items():
-                        if ref not in cancelled and now - submitted >= (self.time_limit or 0):
+                        if self.time_limit is None or ref in cancelled:
+                            continue
+                        if now - submitted >= self.time_limit:
                             ray.cancel(ref, force=True)
                             cancelled.add(ref)
                     continue
-                ref = done[0]
-                seed, submitted = pending.pop(ref)
-                try:
-                    result = ray.get(ref)
-                except ray.exceptions.RayError as error:
-                    seconds = now - submitted
-                    if ref in cancelled:
-                        reason = (f"stopped after {seconds:.1f} s: over the time limit of "
-                                  f"{self.time_limit:g} s per build (--time-limit)")
-                    else:
-                        reason = (f"the build's Ray task failed {self.retries + 1} "
-                                  f"time{'s' * (self.retries > 0)}: {_first_line(error)}")
-                    result = failed(seed, reason, seconds)
-                cancelled.discard(ref)
-                yield result
+                for ref in done:
+                    seed, submitted = pending.pop(ref)
+                    try:
+                        result = ray.get(ref)
+                    except ray.exceptions.RayError as error:
+                        result = failed(seed, self._reason(error, ref in cancelled,
+                                                           now - submitted), now - submitted)
+                    cancelled.discard(ref)
+                    yield result
         finally:
             for ref in pending:  # stopped early: no build may outlive the batch
                 ray.cancel(ref, force=True)

@@ -145,3 +145,12 @@ def test_ray_options_without_ray_are_refused(grammar, tmp_path, capsys):
     assert main(["batch", str(grammar), "-n", "1", "--out", str(tmp_path / "out"),
                  "--retries", "1"]) == 2
     assert "--retries needs --engine ray" in capsys.readouterr().err
+
+
+def test_a_build_over_the_time_limit_is_stopped_and_recorded(cluster, grammar, tmp_path):
+    """No build of a furnished room takes under 10 ms (imports, derivation, glb)."""
+    report = run_batch(grammar, count=3, out_dir=tmp_path / "out", engine="ray",
+                       time_limit=0.01, build_options={"physics": False})
+    assert [r.seed for r in report.failed] == [0, 1, 2]
+    assert all("over the time limit of 0.01 s per build" in r.error for r in report.failed)
+    assert not list((tmp_path / "out").glob(".building-*"))
