@@ -84,7 +84,15 @@ def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
                         help="extra outputs, comma separated: obj,urdf,sdf,mjcf,usd,map,view,render")
     parser.add_argument("--max-depth", type=int, default=64, metavar="N",
                         help="derivation depth limit (default 64)")
+    _add_materials(parser)
     _add_output(parser, "print a machine-readable summary (JSON) on stdout")
+
+
+def _add_materials(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--materials", choices=("neutral", "random"), default=None,
+                        help="materials and lights: neutral, or drawn with the seed per "
+                             "build and room (default: the grammar variable 'materials', "
+                             "else neutral; docs/appearance.md)")
 
 
 def _run_build(args: argparse.Namespace) -> int:
@@ -99,7 +107,8 @@ def _run_build(args: argparse.Namespace) -> int:
                   out_dir=out_dir, formats=formats, physics=not args.no_physics,
                   robot_radius=args.robot_radius, strict=args.strict,
                   quiet=args.quiet or args.json, max_depth=args.max_depth,
-                  allow_paths=args.allow_paths, overrides=_overrides(args))
+                  allow_paths=args.allow_paths, overrides=_overrides(args),
+                  materials=args.materials)
     if args.json:
         import json
 
@@ -192,6 +201,7 @@ def _add_batch_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--export", type=_formats, default=[], metavar="FORMATS",
                         help="extra outputs per seed besides glb and scene JSON, comma "
                              "separated: plan,obj,urdf,sdf,mjcf,usd,map,view,render")
+    _add_materials(parser)
     _add_output(parser, "print the batch report (JSON) on stdout")
 
 
@@ -208,6 +218,8 @@ def _run_batch(args: argparse.Namespace) -> int:
                "formats": list(dict.fromkeys([*BATCH_FORMATS, *args.export])),
                "overrides": _overrides(args)}
     shard = parse_shard(args.shard) if args.shard else None
+    if args.materials is not None:
+        options["materials"] = args.materials
     kwargs = dict(count=args.count, out_dir=out_dir, jobs=args.jobs, seed_start=args.seed_start,
                   time_limit=args.time_limit, build_options=options, engine=args.engine,
                   address=args.address, retries=args.retries, shard=shard, force=args.force)

@@ -194,7 +194,8 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
           strict: bool = False, quiet: bool = False, max_depth: int = DEFAULT_MAX_DEPTH,
           operations: OperationRegistry | None = None,
           allow_paths: Sequence[str | Path] = (),
-          overrides: Mapping[str, str] | None = None) -> Scene:
+          overrides: Mapping[str, str] | None = None,
+          materials: str | None = None) -> Scene:
     """Build a grammar: derive it, mesh it, check it and write the requested files.
 
     Parameters
@@ -232,6 +233,10 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
     overrides:
         Grammar variables to replace, name → value text (``--set NAME=VALUE``,
         :mod:`cga.overrides`); each must be declared by the grammar and of its kind.
+    materials:
+        ``"neutral"`` or ``"random"`` (``--materials``): whether materials and lights are
+        drawn with the seed (docs/appearance.md); default: the grammar variable
+        ``materials``, else neutral.
 
     Returns
     -------
@@ -253,6 +258,10 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
     path = Path(grammar_path)
     text = read_grammar(path)
     _check_options(seed, units, robot_radius, formats, max_depth)
+    if materials is not None:
+        from .appearance import check_mode
+
+        check_mode(materials)
     sandbox = Sandbox.for_grammar(path.parent, allow_paths)
     timings: dict[str, float] = {}
     try:
@@ -274,12 +283,16 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
                                        strict=strict, library=library,
                                        sandbox=sandbox, overrides=overrides).derive(lot)
             timings.update(derivation.timings)
+            from .appearance import appearance_from
             from .building import stack_storeys
+
+            appearance = appearance_from(derivation.variables, mode=materials,
+                                         base_dir=path.parent, sandbox=sandbox)
 
             scene = Scene(name=path.stem, seed=seed, units=derivation.units,
                           terminals=stack_storeys(derivation.terminals), source=path,
                           diagnostics=list(derivation.diagnostics), timings=timings,
-                          library=library)
+                          library=library, appearance=appearance)
             with progress.stage("meshing", "meshing…"):
                 scene.nodes  # noqa: B018 - made once here, timed; checks and exporters reuse them
             if physics:

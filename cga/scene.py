@@ -19,6 +19,9 @@ from .shape import Shape
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
+    import numpy as np
+
+    from cga.appearance import Appearance, Light, Material
     from cga.difficulty import DifficultyReport
     from cga.operations.furniture.library import ModelLibrary
 
@@ -71,7 +74,9 @@ class SceneNode:
     ``item`` describes a furniture node (None for every other kind); ``extras`` are the
     labels of the other kinds (wall id, floor, shape path, ...), written to the glTF as
     they are. ``door`` is set on a door leaf: its hinge, angle and collision box
-    (:mod:`cga.doors`).
+    (:mod:`cga.doors`). ``materials`` are the node's distinct materials and
+    ``face_materials`` the index into them of each triangle (:mod:`cga.appearance.dress`;
+    empty and None before dressing).
     """
 
     path: str
@@ -82,6 +87,8 @@ class SceneNode:
     parts: tuple["trimesh.Trimesh", ...] = ()
     item: ItemInfo | None = None
     door: "DoorLeaf | None" = None
+    materials: tuple["Material", ...] = ()
+    face_materials: "np.ndarray | None" = field(default=None, compare=False, repr=False)
 
     @property
     def labels(self) -> dict[str, Any]:
@@ -104,7 +111,9 @@ class Scene:
     seconds. ``difficulty`` holds the measured difficulty (:mod:`cga.difficulty`),
     set by the build after the checks. ``library`` is the
     build's furniture model library (the one ``add_furniture`` sized items with); the
-    meshing layer poses its models. :attr:`nodes` are the build's meshes, made once.
+    meshing layer poses its models. ``appearance`` says which materials and lights the
+    build has (:mod:`cga.appearance`; None: the shipped tables, neutral). :attr:`nodes`
+    are the build's meshes, made once, and :attr:`lights` its ceiling lights.
     """
 
     name: str
@@ -117,7 +126,9 @@ class Scene:
     checks: dict[str, CheckReport] = field(default_factory=dict)
     difficulty: "DifficultyReport | None" = None
     library: "ModelLibrary | None" = None
+    appearance: "Appearance | None" = None
     _nodes: tuple[SceneNode, ...] | None = field(default=None, repr=False, compare=False)
+    _lights: tuple["Light", ...] | None = field(default=None, repr=False, compare=False)
 
     @property
     def nodes(self) -> tuple[SceneNode, ...]:
@@ -128,6 +139,24 @@ class Scene:
 
             self._nodes = tuple(scene_nodes(self))
         return self._nodes
+
+    @property
+    def lights(self) -> tuple["Light", ...]:
+        """The ceiling lights of every room (:mod:`cga.appearance.lights`), made on first
+        use and kept."""
+        if self._lights is None:
+            from .appearance import scene_lights
+
+            self._lights = tuple(scene_lights(self.floors, self.looks(), self.seed))
+        return self._lights
+
+    def looks(self) -> "Appearance":
+        """The build's appearance: ``appearance``, else the shipped tables, neutral."""
+        if self.appearance is None:
+            from .appearance import shipped_appearance
+
+            return shipped_appearance()
+        return self.appearance
 
     @property
     def floors(self) -> list[FloorPlan]:

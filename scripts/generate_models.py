@@ -8,7 +8,8 @@ without a convex decomposition (docs/furniture.md, docs/checks.md).
 
 Conventions of every file (docs/architecture.md "Units and frames", docs/models.md):
 metres, y up, front toward −z, origin at the centre of the footprint on the floor (the
-lowest point is at y = 0). One OBJ group ``g part_N`` per part; vertex colours
+lowest point is at y = 0). One OBJ group ``g part_N_<material>`` per part (its material class, e.g.
+``part_3_wood``, which the material library dresses); vertex colours
 ``v x y z r g b`` colour each part; header comments give the model's ``# density`` (kg/m³, chosen so
 the parts weigh what the real piece weighs) and main ``# color``. Output is deterministic:
 rerunning gives identical bytes.
@@ -27,6 +28,7 @@ import math
 import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import NamedTuple
 from pathlib import Path
 
 import numpy as np
@@ -42,64 +44,80 @@ MODELS_DIR = Path(__file__).resolve().parent.parent / "models"
 Color = tuple[float, float, float]
 Vec3 = tuple[float, float, float]
 
-# Palette (RGB in 0..1).
-OAK: Color = (0.72, 0.55, 0.36)
-WALNUT: Color = (0.42, 0.28, 0.18)
-WHITE: Color = (0.93, 0.93, 0.91)
-CERAMIC: Color = (0.97, 0.97, 0.96)
-LINEN: Color = (0.90, 0.87, 0.80)
-BLUE_FABRIC: Color = (0.29, 0.39, 0.55)
-GREY_FABRIC: Color = (0.50, 0.50, 0.52)
-CHARCOAL: Color = (0.16, 0.16, 0.17)
-BLACK: Color = (0.05, 0.05, 0.06)
-STEEL: Color = (0.75, 0.76, 0.78)
-DARK_STEEL: Color = (0.45, 0.46, 0.48)
-GLASS: Color = (0.70, 0.85, 0.90)
-LEAF: Color = (0.22, 0.50, 0.20)
-DARK_LEAF: Color = (0.15, 0.38, 0.14)
-TERRACOTTA: Color = (0.72, 0.36, 0.22)
-SOIL: Color = (0.30, 0.20, 0.12)
-RUG_RED: Color = (0.60, 0.20, 0.18)
-RUG_CREAM: Color = (0.88, 0.80, 0.62)
-SHADE: Color = (0.95, 0.90, 0.75)
-BOOKS: tuple[Color, ...] = ((0.55, 0.15, 0.15), (0.15, 0.30, 0.50), (0.80, 0.65, 0.25),
-                            (0.20, 0.45, 0.30), (0.45, 0.30, 0.50))
+
+
+class Finish(NamedTuple):
+    """A part's surface: its colour (RGB in 0..1) and its material class, which names
+    the part's OBJ group (``g part_3_wood``) so the material library can dress it
+    (docs/appearance.md)."""
+
+    color: Color
+    material: str
+
+
+# Palette: colours with the material class of the surface they are.
+OAK = Finish((0.72, 0.55, 0.36), "wood")
+WALNUT = Finish((0.42, 0.28, 0.18), "wood")
+WHITE = Finish((0.93, 0.93, 0.91), "paint")  # lacquered boards, painted doors and frames
+SHEET = Finish(WHITE.color, "fabric")  # a mattress
+SEAT = Finish(WHITE.color, "plastic")  # a toilet seat
+CERAMIC = Finish((0.97, 0.97, 0.96), "ceramic")
+LINEN = Finish((0.90, 0.87, 0.80), "fabric")
+BLUE_FABRIC = Finish((0.29, 0.39, 0.55), "fabric")
+GREY_FABRIC = Finish((0.50, 0.50, 0.52), "fabric")
+CHARCOAL = Finish((0.16, 0.16, 0.17), "plastic")
+IRON = Finish(CHARCOAL.color, "metal")  # dark metal legs and bases
+BLACK = Finish((0.05, 0.05, 0.06), "plastic")
+HOB = Finish(BLACK.color, "glass")  # a glass-ceramic hob, an oven window
+STEEL = Finish((0.75, 0.76, 0.78), "metal")
+DARK_STEEL = Finish((0.45, 0.46, 0.48), "metal")
+GLASS = Finish((0.70, 0.85, 0.90), "glass")
+LEAF = Finish((0.22, 0.50, 0.20), "plant")
+DARK_LEAF = Finish((0.15, 0.38, 0.14), "plant")
+TERRACOTTA = Finish((0.72, 0.36, 0.22), "ceramic")
+SOIL = Finish((0.30, 0.20, 0.12), "soil")
+RUG_RED = Finish((0.60, 0.20, 0.18), "fabric")
+RUG_CREAM = Finish((0.88, 0.80, 0.62), "fabric")
+SHADE = Finish((0.95, 0.90, 0.75), "fabric")
+BOOKS: tuple[Finish, ...] = tuple(Finish(c, "paper") for c in (
+    (0.55, 0.15, 0.15), (0.15, 0.30, 0.50), (0.80, 0.65, 0.25), (0.20, 0.45, 0.30),
+    (0.45, 0.30, 0.50)))
 
 
 @dataclass(frozen=True)
 class Part:
-    """One convex solid of a model and its colour."""
+    """One convex solid of a model and its finish (colour and material class)."""
 
     mesh: trimesh.Trimesh
-    color: Color
+    color: Finish
 
 
 @dataclass(frozen=True)
 class Model:
-    """A model as built: its parts, its main colour and the real piece's mass (kg)."""
+    """A model as built: its parts, its main finish and the real piece's mass (kg)."""
 
     name: str
-    color: Color
+    color: Finish
     mass: float
     parts: tuple[Part, ...]
 
 
 # -- convex primitives -------------------------------------------------------------------
 
-def box(a: Vec3, b: Vec3, color: Color) -> Part:
+def box(a: Vec3, b: Vec3, color: Finish) -> Part:
     """An axis-aligned box between opposite corners ``a`` and ``b`` (in any order)."""
     return Part(trimesh.creation.box(bounds=np.sort(np.array([a, b], dtype=float), axis=0)),
                 color)
 
 
-def turned_box(size: Vec3, center: Vec3, angle: float, color: Color) -> Part:
+def turned_box(size: Vec3, center: Vec3, angle: float, color: Finish) -> Part:
     """A box of ``size`` turned by ``angle`` radians about +y, centred on ``center``."""
     matrix = trimesh.transformations.rotation_matrix(angle, (0.0, 1.0, 0.0))
     matrix[:3, 3] = center
     return Part(trimesh.creation.box(extents=size, transform=matrix), color)
 
 
-def frustum(x: float, z: float, y0: float, y1: float, r0: float, r1: float, color: Color,
+def frustum(x: float, z: float, y0: float, y1: float, r0: float, r1: float, color: Finish,
             sections: int = 8) -> Part:
     """A vertical frustum, radius ``r0`` at ``y0`` to ``r1`` at ``y1`` (a prism if equal)."""
     mesh = trimesh.creation.cylinder(radius=r0, sections=sections,
@@ -112,13 +130,13 @@ def frustum(x: float, z: float, y0: float, y1: float, r0: float, r1: float, colo
     return Part(trimesh.Trimesh(vertices, mesh.faces, process=False), color)
 
 
-def prism(x: float, z: float, y0: float, y1: float, radius: float, color: Color,
+def prism(x: float, z: float, y0: float, y1: float, radius: float, color: Finish,
           sections: int = 8) -> Part:
     """A vertical few-sided cylinder standing on ``y0``."""
     return frustum(x, z, y0, y1, radius, radius, color, sections)
 
 
-def oval(x: float, z: float, y0: float, y1: float, rx: float, rz: float, color: Color,
+def oval(x: float, z: float, y0: float, y1: float, rx: float, rz: float, color: Finish,
          sections: int = 12) -> Part:
     """A vertical cylinder with an elliptic section (radii ``rx`` across, ``rz`` deep)."""
     part = prism(0.0, 0.0, y0, y1, rx, color, sections)
@@ -127,7 +145,7 @@ def oval(x: float, z: float, y0: float, y1: float, rx: float, rz: float, color: 
     return Part(mesh, color)
 
 
-def knob(x: float, y: float, z0: float, z1: float, radius: float, color: Color,
+def knob(x: float, y: float, z0: float, z1: float, radius: float, color: Finish,
          sections: int = 8) -> Part:
     """A cylinder along z between ``z0`` and ``z1`` (knobs, roses, a porthole)."""
     mesh = trimesh.creation.cylinder(radius=radius, sections=sections,
@@ -135,7 +153,7 @@ def knob(x: float, y: float, z0: float, z1: float, radius: float, color: Color,
     return Part(mesh, color)
 
 
-def ball(center: Vec3, radius: float, color: Color, squash: float = 1.0) -> Part:
+def ball(center: Vec3, radius: float, color: Finish, squash: float = 1.0) -> Part:
     """A coarse sphere (80 faces), optionally squashed vertically by ``squash``."""
     mesh = trimesh.creation.icosphere(subdivisions=1, radius=radius)
     mesh.vertices = mesh.vertices * np.array([1.0, squash, 1.0]) + np.asarray(center)
@@ -143,7 +161,7 @@ def ball(center: Vec3, radius: float, color: Color, squash: float = 1.0) -> Part
 
 
 def legs(half_x: float, half_z: float, y0: float, y1: float, side: float,
-         color: Color) -> list[Part]:
+         color: Finish) -> list[Part]:
     """Four square legs of width ``side`` centred at (±half_x, ±half_z)."""
     s = side / 2
     return [box((x - s, y0, z - s), (x + s, y1, z + s), color)
@@ -160,7 +178,7 @@ def bed(name: str, width: float, length: float, head: float, pillows: int,
     parts = legs(w - 0.05, l - 0.12, 0.0, 0.10, 0.06, WALNUT)
     parts += [
         box((-w, 0.10, foot), (w, 0.32, back), WALNUT),
-        box((-w + 0.03, 0.32, foot + 0.03), (w - 0.03, 0.54, back - 0.03), WHITE),
+        box((-w + 0.03, 0.32, foot + 0.03), (w - 0.03, 0.54, back - 0.03), SHEET),
         box((-w + 0.02, 0.54, foot + 0.02), (w - 0.02, 0.57, back - 0.55), BLUE_FABRIC),
         box((-w, 0.0, back), (w, head, l), WALNUT),
     ]
@@ -172,7 +190,7 @@ def bed(name: str, width: float, length: float, head: float, pillows: int,
     return Model(name, WALNUT, mass, tuple(parts))
 
 
-def sofa(name: str, width: float, seats: int, color: Color, mass: float) -> Model:
+def sofa(name: str, width: float, seats: int, color: Finish, mass: float) -> Model:
     """Base on feet, back (+z), two arms and one seat and back cushion per seat."""
     w, d, arm = width / 2, 0.45, 0.16
     parts = [prism(x, z, 0.0, 0.08, 0.025, WALNUT)
@@ -193,7 +211,7 @@ def sofa(name: str, width: float, seats: int, color: Color, mass: float) -> Mode
 
 
 def table(width: float, depth: float, height: float, top: float, leg: float,
-          color: Color) -> list[Part]:
+          color: Finish) -> list[Part]:
     """Top, four legs inset by their width and four aprons under the top."""
     w, d = width / 2, depth / 2
     lx, lz, y = w - leg, d - leg, height - top
@@ -205,13 +223,13 @@ def table(width: float, depth: float, height: float, top: float, leg: float,
 
 
 def carcass(width: float, y0: float, y1: float, z0: float, z1: float,
-            color: Color) -> Part:
+            color: Finish) -> Part:
     """The closed body of a cabinet between heights ``y0``..``y1`` and depths ``z0``..``z1``."""
     return box((-width / 2, y0, z0), (width / 2, y1, z1), color)
 
 
 def fronts(columns: int, y0: float, y1: float, width: float, front_z: float,
-           color: Color, handle: Color, handle_at: str) -> list[Part]:
+           color: Finish, handle: Finish, handle_at: str) -> list[Part]:
     """``columns`` door or drawer fronts side by side on the face at ``front_z``, each
     with a bar handle: vertical near the meeting edge (``"edge"``), horizontal at the
     top (``"top"``) or centred (``"middle"``)."""
@@ -251,7 +269,7 @@ def tap(x: float, z: float, y0: float, reach: float) -> list[Part]:
 
 
 def open_shelving(width: float, height: float, depth: float, boards: int,
-                  back: bool, color: Color) -> list[Part]:
+                  back: bool, color: Finish) -> list[Part]:
     """Two sides, a top, a plinth, ``boards`` boards and optionally a back panel."""
     w, d, t = width / 2, depth / 2, 0.02
     parts = [box((-w, 0.0, -d), (-w + t, height, d), color),
@@ -302,8 +320,8 @@ def make_dresser() -> Model:
 
 def make_desk() -> Model:
     parts = [box((-0.70, 0.72, -0.35), (0.70, 0.75, 0.35), OAK)]
-    parts += legs(0.65, 0.30, 0.0, 0.72, 0.05, CHARCOAL)
-    parts += [box((-0.625, 0.40, 0.30), (0.625, 0.70, 0.32), CHARCOAL),
+    parts += legs(0.65, 0.30, 0.0, 0.72, 0.05, IRON)
+    parts += [box((-0.625, 0.40, 0.30), (0.625, 0.70, 0.32), IRON),
               box((0.15, 0.62, -0.30), (0.60, 0.72, 0.28), OAK),
               box((0.155, 0.625, -0.32), (0.595, 0.715, -0.30), WHITE)]
     return Model("desk", OAK, 30, tuple(parts))
@@ -363,7 +381,7 @@ def make_armchair() -> Model:
 
 
 def make_tvboard() -> Model:
-    parts = legs(0.76, 0.16, 0.0, 0.10, 0.04, CHARCOAL)
+    parts = legs(0.76, 0.16, 0.0, 0.10, 0.04, IRON)
     parts += [carcass(1.60, 0.10, 0.48, -0.18, 0.20, WHITE),
               *fronts(2, 0.12, 0.46, 1.60, -0.18, WHITE, STEEL, "edge"),
               box((-0.15, 0.48, -0.08), (0.15, 0.50, 0.12), BLACK),
@@ -392,7 +410,7 @@ def make_shelf() -> Model:
 
 
 def make_floorlamp() -> Model:
-    parts = (prism(0.0, 0.0, 0.0, 0.03, 0.15, CHARCOAL, sections=12),
+    parts = (prism(0.0, 0.0, 0.0, 0.03, 0.15, IRON, sections=12),
              prism(0.0, 0.0, 0.03, 1.42, 0.012, STEEL, sections=6),
              frustum(0.0, 0.0, 1.40, 1.70, 0.19, 0.13, SHADE, sections=10))
     return Model("floorlamp", SHADE, 6, parts)
@@ -419,12 +437,12 @@ def make_sink() -> Model:
 def make_stove() -> Model:
     parts = [carcass(0.60, 0.0, 0.08, -0.25, 0.30, CHARCOAL),
              carcass(0.60, 0.08, 0.88, -0.28, 0.30, WHITE),
-             carcass(0.60, 0.88, 0.90, -0.28, 0.30, BLACK)]
+             carcass(0.60, 0.88, 0.90, -0.28, 0.30, HOB)]
     for x, z, r in ((-0.14, -0.13, 0.07), (0.14, -0.13, 0.055), (-0.14, 0.15, 0.055),
                     (0.14, 0.15, 0.07)):
         parts.append(prism(x, z, 0.90, 0.91, r, DARK_STEEL, sections=12))
     parts += [box((-0.28, 0.12, -0.30), (0.28, 0.68, -0.28), WHITE),
-              box((-0.20, 0.25, -0.305), (0.20, 0.55, -0.30), BLACK),
+              box((-0.20, 0.25, -0.305), (0.20, 0.55, -0.30), HOB),
               box((-0.22, 0.62, -0.34), (0.22, 0.64, -0.31), STEEL),
               box((-0.28, 0.70, -0.29), (0.28, 0.86, -0.28), DARK_STEEL)]
     parts += [knob(x, 0.78, -0.31, -0.29, 0.02, BLACK) for x in (-0.18, -0.06, 0.06, 0.18)]
@@ -443,7 +461,7 @@ def make_fridge() -> Model:
 def make_toilet() -> Model:
     parts = (box((-0.12, 0.0, -0.15), (0.12, 0.30, 0.20), CERAMIC),
              oval(0.0, -0.06, 0.28, 0.40, 0.18, 0.24, CERAMIC),
-             oval(0.0, -0.06, 0.40, 0.42, 0.185, 0.245, WHITE),
+             oval(0.0, -0.06, 0.40, 0.42, 0.185, 0.245, SEAT),
              box((-0.19, 0.40, 0.17), (0.19, 0.80, 0.34), CERAMIC),
              prism(0.0, 0.255, 0.80, 0.81, 0.025, STEEL))
     return Model("toilet", CERAMIC, 30, parts)
@@ -483,7 +501,7 @@ def make_washingmachine() -> Model:
     parts = (carcass(0.60, 0.0, 0.85, -0.28, 0.30, WHITE),
              box((-0.29, 0.74, -0.29), (0.29, 0.83, -0.28), STEEL),
              knob(0.18, 0.785, -0.31, -0.29, 0.03, DARK_STEEL),
-             knob(0.0, 0.42, -0.31, -0.28, 0.17, STEEL, sections=16),
+             knob(0.0, 0.42, -0.31, -0.28, 0.17, GLASS, sections=16),
              knob(0.0, 0.42, -0.315, -0.31, 0.12, CHARCOAL, sections=16))
     return Model("washingmachine", WHITE, 70, parts)
 
@@ -551,12 +569,12 @@ def obj_text(model: Model) -> str:
         "# metres, y up, front toward -z, origin at the centre of the footprint on the floor",
         f"# size {' '.join(_number(s, 3) for s in size)}",
         f"# density {density}",
-        f"# color {' '.join(_number(c, 3) for c in model.color)}",
+        f"# color {' '.join(_number(c, 3) for c in model.color.color)}",
     ]
     first = 1
     for index, part in enumerate(model.parts):
-        rgb = " ".join(_number(c, 3) for c in part.color)
-        lines.append(f"g part_{index}")
+        rgb = " ".join(_number(c, 3) for c in part.color.color)
+        lines.append(f"g part_{index}_{part.color.material}")
         lines += [f"v {' '.join(_number(c, 6) for c in vertex)} {rgb}"
                   for vertex in part.mesh.vertices + offset]
         lines += [f"f {' '.join(str(first + i) for i in face)}" for face in part.mesh.faces]

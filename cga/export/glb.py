@@ -13,8 +13,14 @@ by its quarter turns; a door leaf at its hinge, turned by the build's door angle
 model (same size) share one glTF mesh, and a viewer or Blender turns an item or swings a
 door about the right point. Meshes carry normals. A node's ``extras`` are its semantic
 labels plus its ``kind`` and ``static`` flag, its semantic ``class_id`` and ``class`` and
-its ``instance_id`` (:mod:`cga.semantics`); y up, metres. Meshes that carry no colour of
-their own get a material of their kind's colour (:func:`cga.export.palette.node_color`).
+its ``instance_id`` (:mod:`cga.semantics`); y up, metres.
+
+Every primitive has a glTF metallic-roughness material: a node's mesh has one primitive
+per material of the node (:mod:`cga.appearance`: wall paint per room, floors per room,
+each furniture part's material), base colours linear as glTF wants them; see-through
+materials (window glass) blend. Each room's ceiling lights are nodes
+(``floor0/room3_Office/light0``) that point at ``KHR_lights_punctual`` point lights
+(candela, colour of their temperature; docs/appearance.md).
 
 The bytes are a pure function of the scene: nodes in the given order, no timestamps,
 extras with sorted keys. The same seed gives a byte-identical file (tested).
@@ -29,13 +35,14 @@ from typing import Any
 
 import numpy as np
 
+from cga.appearance.material import Material
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.model import FloorPlan, rotation_matrix
 from cga.scene import Scene, SceneNode
 from cga.semantics import class_names, instance_ids, node_class
 
-from .palette import node_color
+from .palette import kind_material
 
 __all__ = ["scene_as_glb", "export_glb", "json_safe", "node_pivot"]
 
@@ -80,28 +87,53 @@ def node_pivot(node: SceneNode) -> np.ndarray:
     return matrix
 
 
-def _local_mesh(node: SceneNode, pivot: np.ndarray) -> Any:
-    """A copy of the node's mesh in its pivot's frame, without metadata (which trimesh
-    would write as mesh extras), coloured by kind when it has no colours of its own."""
+def _local_meshes(node: SceneNode, pivot: np.ndarray) -> list[Any]:
+    """The node's mesh in its pivot's frame, without metadata (which trimesh would write
+    as mesh extras): one mesh per material of the node (:attr:`SceneNode.materials`),
+    each with its PBR material, which become the primitives of one glTF mesh. A node
+    without materials (not dressed) keeps its own colours, or gets its kind's colour."""
     import trimesh
-    from trimesh.visual.material import PBRMaterial
 
     source = node.mesh
-    visual = source.visual
-    if visual is None or visual.kind is None:
-        r, g, b = node_color(node.kind)
-        material = PBRMaterial(name=node.kind, baseColorFactor=[r, g, b, 1.0],
-                               metallicFactor=0.0, roughnessFactor=0.9)
-        visual = trimesh.visual.TextureVisuals(material=material)
-    else:
-        visual = visual.copy()
     inverse = np.linalg.inv(pivot)
     vertices = np.asarray(source.vertices, dtype=float) @ inverse[:3, :3].T + inverse[:3, 3]
     # micrometre grid: instances of one model land on identical local vertices
-    mesh = trimesh.Trimesh(vertices=np.round(vertices, 6) + 0.0, faces=np.asarray(source.faces),
-                           visual=visual, process=False)
-    _give_every_vertex_a_normal(mesh)
-    return mesh
+    vertices = np.round(vertices, 6) + 0.0
+    faces = np.asarray(source.faces)
+    if not node.materials or node.face_materials is None:
+        visual = source.visual
+        if visual is None or visual.kind is None:
+            visual = _pbr(kind_material(node.kind))
+        else:
+            visual = visual.copy()
+        mesh = trimesh.Trimesh(vertices=vertices, faces=faces, visual=visual, process=False)
+        _give_every_vertex_a_normal(mesh)
+        return [mesh]
+    whole = trimesh.Trimesh(vertices=vertices, faces=faces, process=False)
+    _give_every_vertex_a_normal(whole)
+    normals = np.asarray(whole.vertex_normals)
+    pieces = []
+    for k, material in enumerate(node.materials):
+        chosen = faces[node.face_materials == k]
+        if not len(chosen):
+            continue
+        used, local = np.unique(chosen, return_inverse=True)
+        pieces.append(trimesh.Trimesh(vertices=vertices[used], faces=local.reshape(-1, 3),
+                                      vertex_normals=normals[used], visual=_pbr(material),
+                                      process=False))
+    return pieces
+
+
+def _pbr(material: Material) -> Any:
+    """A trimesh visual carrying ``material`` as a glTF metallic-roughness material."""
+    import trimesh
+    from trimesh.visual.material import PBRMaterial
+
+    pbr = PBRMaterial(name=material.name, baseColorFactor=material.linear_rgba(),
+                      metallicFactor=material.metallic, roughnessFactor=material.roughness,
+                      alphaMode="BLEND" if material.transparent else None,
+                      doubleSided=material.transparent)
+    return trimesh.visual.TextureVisuals(material=pbr)
 
 
 def _give_every_vertex_a_normal(mesh: Any) -> None:
@@ -119,15 +151,18 @@ def _give_every_vertex_a_normal(mesh: Any) -> None:
         mesh.vertex_normals = normals
 
 
-def _mesh_key(mesh: Any) -> str:
+def _mesh_key(meshes: Sequence[Any]) -> str:
     digest = hashlib.sha1()
-    digest.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
-    digest.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
-    visual = mesh.visual
-    if visual.kind == "vertex":
-        digest.update(np.ascontiguousarray(visual.vertex_colors).tobytes())
-    else:
-        digest.update(repr(getattr(visual.material, "baseColorFactor", None)).encode())
+    for mesh in meshes:
+        digest.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
+        digest.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
+        visual = mesh.visual
+        if visual.kind == "vertex":
+            digest.update(np.ascontiguousarray(visual.vertex_colors).tobytes())
+        else:
+            material = visual.material
+            digest.update(repr((getattr(material, "name", None),
+                                getattr(material, "baseColorFactor", None))).encode())
     return digest.hexdigest()
 
 
@@ -184,17 +219,71 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
             raise ExportError(f"node {node.path!r}: {error}") from None
         parent = _parent(tm_scene, node.path, root, groups)
         pivot = node_pivot(node)
-        mesh = _local_mesh(node, pivot)
-        key = _mesh_key(mesh)
+        pieces = _local_meshes(node, pivot)
+        key = _mesh_key(pieces)
         if key not in meshes:
             base = node.item.model if node.item is not None else node.path
             meshes[key] = base if base not in tm_scene.geometry else f"{base}#{len(meshes)}"
-            tm_scene.geometry[meshes[key]] = mesh
+            tm_scene.geometry[meshes[key]] = pieces[0]
+            for k, piece in enumerate(pieces[1:], start=1):
+                tm_scene.geometry[f"{meshes[key]}{_PRIMITIVE}{k}"] = piece
         tm_scene.graph.update(frame_from=parent, frame_to=node.path, matrix=pivot,
                               geometry=meshes[key], metadata=extras)
+    lights = _add_lights(tm_scene, scene, root, groups)
     tm_scene.metadata.update(json_safe({"generator": "cga", "name": scene.name,
                                         "seed": scene.seed, "units": "metres", "up": "y"}))
-    return tm_scene.export(file_type="glb", include_normals=True, unitize_normals=True)
+    return tm_scene.export(file_type="glb", include_normals=True, unitize_normals=True,
+                           tree_postprocessor=lambda tree: _finish_tree(tree, lights))
+
+
+_PRIMITIVE = "@"
+"""Joins a mesh's name and the number of its further primitive: trimesh writes one glTF
+mesh per geometry, so a node's further materials are geometries ``<mesh>@1``, ... that
+:func:`_finish_tree` moves into the node's mesh as primitives."""
+
+
+def _add_lights(tm_scene: Any, scene: Scene, root: str,
+                groups: Mapping[str, dict[str, Any]]) -> list[dict[str, Any]]:
+    """A node per ceiling light (``floor0/room3_Office/light0``) under its room, pointing
+    at its ``KHR_lights_punctual`` light; returns the lights' definitions."""
+    out = []
+    for k, light in enumerate(scene.lights):
+        parent = _parent(tm_scene, light.name, root, groups)
+        matrix = np.eye(4)
+        matrix[:3, 3] = light.position
+        extras = json_safe({"kind": "light", "floor": light.floor, "room": light.room,
+                            "lumens": light.lumens, "temperature": light.temperature})
+        extras["gltf_extensions"] = {"KHR_lights_punctual": {"light": k}}
+        tm_scene.graph.update(frame_from=parent, frame_to=light.name, matrix=matrix,
+                              metadata=extras)
+        out.append({"name": light.name, "type": "point", "color": list(light.color),
+                    "intensity": round(light.intensity, 6)})
+    return out
+
+
+def _finish_tree(tree: dict[str, Any], lights: list[dict[str, Any]]) -> None:
+    """Join each node's further primitives into its mesh (see :data:`_PRIMITIVE`) and
+    declare the lights (glTF ``KHR_lights_punctual``)."""
+    meshes = tree.get("meshes", [])
+    index = {m.get("name"): k for k, m in enumerate(meshes)}
+    moved: dict[int, int] = {}
+    for k, mesh in enumerate(meshes):
+        name = str(mesh.get("name", ""))
+        head, sep, tail = name.rpartition(_PRIMITIVE)
+        if sep and tail.isdigit() and head in index:
+            meshes[index[head]]["primitives"].extend(mesh["primitives"])
+            moved[k] = index[head]
+    if moved:
+        kept = [k for k in range(len(meshes)) if k not in moved]
+        new = {old: new for new, old in enumerate(kept)}
+        tree["meshes"] = [meshes[k] for k in kept]
+        for node in tree.get("nodes", []):
+            if "mesh" in node:
+                node["mesh"] = new[node["mesh"]]
+    if lights:
+        tree.setdefault("extensions", {})["KHR_lights_punctual"] = {"lights": lights}
+        used = set(tree.get("extensionsUsed", [])) | {"KHR_lights_punctual"}
+        tree["extensionsUsed"] = sorted(used)
 
 
 def _parent(tm_scene: Any, path: str, root: str, groups: Mapping[str, dict[str, Any]]) -> str:

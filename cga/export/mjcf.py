@@ -51,9 +51,11 @@ class _Assets:
     def __init__(self, root: ET.Element, world: World):
         self.element = ET.SubElement(root, "asset")
         self.meshes: dict[str, str] = {}
-        for name, color in sorted(world.materials.items()):
+        for name, look in sorted(world.materials.items()):
             ET.SubElement(self.element, "material", name=name,
-                          rgba=numbers_text([*color, 1.0]), specular="0.1")
+                          rgba=numbers_text([*look.color, look.alpha]),
+                          specular=numbers_text([0.1 + 0.4 * look.metallic]),
+                          shininess=numbers_text([round(1.0 - look.roughness, 3)]))
         ET.SubElement(self.element, "material", name="collision", rgba="0.9 0.3 0.3 0.4")
 
     def mesh(self, group: MeshGroup, *, visual: bool) -> str:

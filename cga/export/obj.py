@@ -1,9 +1,10 @@
 """Wavefront OBJ output: ``<name>.obj`` with one group per scene node, and ``<name>.mtl``.
 
 The OBJ is in the world frame (metres, y up), like the glTF. Each node becomes a group
-named by its semantic path (``g floor0/room1_Livingroom/furniture/sofa``) using a
-material per node kind (walls, slabs, ...) or per furniture model when the item has
-colours of its own; meshes with vertex colours keep them (``v x y z r g b``). The writer
+named by its semantic path (``g floor0/room1_Livingroom/furniture/sofa``), one run of
+faces per material of the node (:mod:`cga.appearance`: the same materials as the glb;
+``usemtl``), the MTL giving each material's colour, opacity and the PBR extension's
+roughness and metalness; meshes with vertex colours keep them (``v x y z r g b``). The writer
 is hand-made on purpose: trimesh's OBJ export merges a scene into one mesh and loses the
 node names this format is asked for.
 
@@ -24,9 +25,11 @@ import numpy as np
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
-from .palette import RGB, node_color
+from cga.appearance.material import Material
 
-__all__ = ["MeshGroup", "obj_text", "mtl_text", "vertex_colors", "node_material", "node_groups",
+from .palette import node_materials
+
+__all__ = ["MeshGroup", "obj_text", "mtl_text", "vertex_colors", "mesh_groups", "node_groups",
            "export_obj"]
 
 
@@ -57,7 +60,8 @@ def obj_text(groups: Sequence[MeshGroup], *, mtl_file: str | None, header: str) 
     Parameters
     ----------
     groups:
-        Meshes to write, one ``g`` group each, in order.
+        Meshes to write, in order: one ``g`` group each, a group that follows one of
+        the same name (another material of a node) continuing it.
     mtl_file:
         Name of the material library to reference (``mtllib``), or None for none.
     header:
@@ -67,10 +71,13 @@ def obj_text(groups: Sequence[MeshGroup], *, mtl_file: str | None, header: str) 
     if mtl_file is not None:
         lines.append(f"mtllib {mtl_file}\n")
     offset = 1
+    previous = None
     for group in groups:
         vertices = np.asarray(group.vertices, dtype=float) + 0.0
         faces = np.asarray(group.faces, dtype=np.int64)
-        lines.append(f"g {_safe(group.name)}\n")
+        if group.name != previous:  # a node's materials follow one another in its group
+            lines.append(f"g {_safe(group.name)}\n")
+            previous = group.name
         if mtl_file is not None:
             lines.append(f"usemtl {_safe(group.material)}\n")
         rows = np.round(vertices, 6) + 0.0
@@ -82,13 +89,17 @@ def obj_text(groups: Sequence[MeshGroup], *, mtl_file: str | None, header: str) 
     return "".join(lines)
 
 
-def mtl_text(materials: Mapping[str, RGB]) -> str:
-    """An MTL library with one diffuse colour per material name (sorted)."""
-    blocks = ["# cga materials: diffuse colours, sRGB 0..1\n"]
+def mtl_text(materials: Mapping[str, Material]) -> str:
+    """An MTL library with one material per name (sorted): diffuse colour (sRGB), ``d``
+    (opacity) and the PBR extension's ``Pr`` (roughness) and ``Pm`` (metallic)."""
+    blocks = ["# cga materials: diffuse colours sRGB 0..1; Pr roughness, Pm metallic\n"]
     for name in sorted(materials):
-        r, g, b = materials[name]
+        m = materials[name]
+        r, g, b = m.color
+        shininess = round(2.0 + 98.0 * (1.0 - m.roughness) ** 2, 1)
         blocks.append(f"\nnewmtl {_safe(name)}\nKa 0 0 0\nKd {r:.4f} {g:.4f} {b:.4f}\n"
-                      f"Ks 0.05 0.05 0.05\nNs 10\nd 1\nillum 2\n")
+                      f"Ks 0.05 0.05 0.05\nNs {shininess:g}\nd {m.alpha:g}\n"
+                      f"Pr {m.roughness:g}\nPm {m.metallic:g}\nillum 2\n")
     return "".join(blocks)
 
 
@@ -100,20 +111,39 @@ def vertex_colors(mesh: Any) -> np.ndarray | None:
     return np.asarray(visual.vertex_colors, dtype=float)[:, :3] / 255.0
 
 
-def node_material(node: SceneNode) -> tuple[str, RGB]:
-    """A node's material, returned as ``(name, colour)``: a furniture item with its own
-    colours (the mean of its vertex colours) gets one per model, everything else one per
-    node kind (:func:`cga.export.palette.node_color`)."""
+def mesh_groups(node: SceneNode, name: str, vertices: np.ndarray | None = None
+                ) -> tuple[list[MeshGroup], dict[str, Material]]:
+    """A node's mesh as one group per material (:func:`cga.export.palette.node_materials`),
+    each with the vertices its triangles use, all named ``name``; and those materials by
+    name.
+
+    Parameters
+    ----------
+    node:
+        The scene node.
+    name:
+        The groups' name.
+    vertices:
+        The node's vertices in the frame to write (default: the node's own, world frame).
+    """
+    points = np.asarray(node.mesh.vertices if vertices is None else vertices, dtype=float)
+    faces = np.asarray(node.mesh.faces, dtype=np.int64)
     colors = vertex_colors(node.mesh)
-    if node.kind == "furniture" and colors is not None:
-        r, g, b = (float(c) for c in colors.mean(axis=0))
-        model = node.item.model if node.item is not None else "item"
-        return _safe(f"furniture_{model}"), (r, g, b)
-    return _safe(node.kind), node_color(node.kind)
+    materials, index = node_materials(node)
+    groups, used = [], {}
+    for k, material in enumerate(materials):
+        chosen = faces[index == k]
+        if not len(chosen):
+            continue
+        keep, local = np.unique(chosen, return_inverse=True)
+        groups.append(MeshGroup(name, points[keep], local.reshape(-1, 3), material.name,
+                                colors[keep] if colors is not None else None))
+        used[material.name] = material
+    return groups, used
 
 
 def node_groups(nodes: Sequence[SceneNode], transform: np.ndarray | None = None
-                ) -> tuple[list[MeshGroup], dict[str, RGB]]:
+                ) -> tuple[list[MeshGroup], dict[str, Material]]:
     """OBJ groups and their materials for ``nodes``.
 
     Parameters
@@ -126,19 +156,20 @@ def node_groups(nodes: Sequence[SceneNode], transform: np.ndarray | None = None
     Returns
     -------
     (groups, materials)
-        One group per node named by its path; material name → colour.
+        Groups named by their node's path (one per material of the node, so a group
+        name repeats); material name → material.
     """
-    groups, materials = [], {}
+    groups: list[MeshGroup] = []
+    materials: dict[str, Material] = {}
     for node in nodes:
-        vertices = np.asarray(node.mesh.vertices, dtype=float)
-        faces = np.asarray(node.mesh.faces, dtype=np.int64)
-        if len(faces) == 0:
+        if len(node.mesh.faces) == 0:
             continue
+        vertices = np.asarray(node.mesh.vertices, dtype=float)
         if transform is not None:
             vertices = vertices @ np.asarray(transform).T
-        material, color = node_material(node)
-        materials[material] = color
-        groups.append(MeshGroup(node.path, vertices, faces, material, vertex_colors(node.mesh)))
+        parts, used = mesh_groups(node, node.path, vertices)
+        groups.extend(parts)
+        materials.update(used)
     return groups, materials
 
 

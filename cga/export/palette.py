@@ -2,8 +2,9 @@
 
 Common room types get fixed soft colours so plans of different builds read alike (a
 kitchen is always the same yellow); any other type gets a colour derived from a hash
-of its name, so it is stable across runs and machines. Meshes are coloured by node
-kind, furniture by its model's ``color`` extra when the model declares one.
+of its name, so it is stable across runs and machines. Scene nodes are coloured by
+their materials (:mod:`cga.appearance`); undressed meshes by their own colours, else
+by node kind.
 """
 
 from __future__ import annotations
@@ -14,8 +15,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cga.appearance.material import Material, linear_to_srgb
+
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
+
+    from cga.scene import SceneNode
 
 __all__ = [
     "RGB",
@@ -25,6 +30,9 @@ __all__ = [
     "room_color",
     "node_color",
     "face_colors",
+    "node_face_colors",
+    "kind_material",
+    "node_materials",
     "hex_color",
 ]
 
@@ -111,8 +119,41 @@ def face_colors(mesh: "trimesh.Trimesh", kind: str) -> np.ndarray:
     if base is not None and len(base) >= 3:
         rgb = np.asarray(base)[:3]  # trimesh keeps it as uint8; glTF writes 0..1 floats
         scale = 255.0 if np.issubdtype(rgb.dtype, np.integer) else 1.0
-        return np.tile(rgb.astype(float) / scale, (count, 1))
+        # glTF's base colour is linear (cga.appearance.material)
+        return np.tile(linear_to_srgb(rgb.astype(float) / scale), (count, 1))
     return np.tile(node_color(kind), (count, 1))
+
+
+def kind_material(kind: str) -> Material:
+    """The material of an undressed mesh: its kind's colour (:func:`node_color`)."""
+    return Material.of(kind, kind, node_color(kind), 0.9, 0.0, 1.0)
+
+
+def node_materials(node: "SceneNode") -> tuple[tuple[Material, ...], np.ndarray]:
+    """A node's materials and the index into them of each triangle: its own
+    (:attr:`SceneNode.materials`) when it is dressed; else one material, a furniture
+    item's mean vertex colour or its kind's."""
+    count = len(node.mesh.faces)
+    if node.materials and node.face_materials is not None:
+        return node.materials, np.asarray(node.face_materials)
+    visual = getattr(node.mesh, "visual", None)
+    if node.kind == "furniture" and visual is not None and visual.kind == "vertex":
+        r, g, b = (float(c) for c in np.asarray(visual.vertex_colors, dtype=float)[:, :3].mean(
+            axis=0) / 255.0)
+        model = node.item.model if node.item is not None else "item"
+        material = Material.of(f"furniture_{model}", "furniture", (r, g, b), 0.7, 0.0, 1.0)
+    else:
+        material = kind_material(node.kind)
+    return (material,), np.zeros(count, dtype=np.int64)
+
+
+def node_face_colors(node: "SceneNode") -> np.ndarray:
+    """``float[faces, 3]`` sRGB colour of every triangle of a scene node: its materials'
+    (:attr:`SceneNode.materials`) when it is dressed, else :func:`face_colors`."""
+    if node.materials and node.face_materials is not None:
+        colors = np.array([m.color for m in node.materials], dtype=float)
+        return colors[node.face_materials]
+    return face_colors(node.mesh, node.kind)
 
 
 def hex_color(color: RGB) -> str:

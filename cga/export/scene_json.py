@@ -2,7 +2,8 @@
 
 The document lists floors, rooms, walls (with openings), doors, windows, furniture
 poses, room-graph edges (door edges per floor, stair edges between floors), stairs,
-diagnostics, checks, the seed and the tool version, in the
+the materials and ceiling lights (docs/appearance.md), diagnostics, checks, the seed and
+the tool version, in the
 world frame of docs/architecture.md ("Units and frames") (metres, y up, plan coordinates
 ``(x, z)``). Its JSON Schema (draft 2020-12) ships as package data,
 ``cga/schema/scene.schema.json``.
@@ -32,12 +33,15 @@ from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.polygon import orient
 
 import cga
+from cga.appearance.lights import Light
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.model import OUTSIDE, Door, Flight, FloorPlan, FurnitureItem, Room, Stair, Wall, Window
 from cga.quality import quality_report
 from cga.scene import Scene, SceneNode
 from cga.semantics import class_names, class_table, instance_ids, node_class
+
+from .palette import node_materials
 
 __all__ = [
     "FORMAT",
@@ -127,6 +131,8 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "timings": _clean(dict(scene.timings), "timings"),
         "difficulty": _clean(scene.difficulty.to_dict(), "difficulty")
         if scene.difficulty is not None else None,
+        "appearance": {"mode": scene.looks().mode, "materials": _materials(nodes)},
+        "lights": [_light(light) for light in scene.lights],
     }
     return _clean(document, "")
 
@@ -351,6 +357,7 @@ def _node(node: SceneNode) -> dict[str, Any]:
         "static": node.static,
         "bbox": {"min": bounds[0].tolist(), "max": bounds[1].tolist()},
         "convex_parts": _convex_parts(node),
+        "materials": [m.name for m in node_materials(node)[0]],
     }
 
 
@@ -363,6 +370,21 @@ def _convex_parts(node: SceneNode) -> int:
     from cga.collision import collision_parts
 
     return len(collision_parts(node))
+
+
+def _materials(nodes: Sequence[SceneNode]) -> list[dict[str, Any]]:
+    """Every material of the nodes, once each, sorted by name."""
+    found = {m.name: m for node in nodes for m in node_materials(node)[0]}
+    return [{"name": m.name, "row": m.row, "surface": m.surface, "color": list(m.color),
+             "roughness": m.roughness, "metallic": m.metallic, "alpha": m.alpha}
+            for _, m in sorted(found.items())]
+
+
+def _light(light: Light) -> dict[str, Any]:
+    return {"name": light.name, "floor": light.floor, "room": light.room,
+            "position": list(light.position), "lumens": light.lumens,
+            "intensity": light.intensity, "temperature": light.temperature,
+            "color": list(light.color)}
 
 
 def _polygon(geometry: Polygon | MultiPolygon) -> dict[str, Any]:

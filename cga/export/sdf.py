@@ -63,8 +63,9 @@ def _geometry(parent: ET.Element, source: Link, files: LinkFiles, world: World) 
         mesh = ET.SubElement(ET.SubElement(visual, "geometry"), "mesh")
         ET.SubElement(mesh, "uri").text = files.visual
         material = ET.SubElement(visual, "material")
-        color = world.materials.get(source.visual[0].material, (0.8, 0.8, 0.8))
-        rgba = numbers_text([*color, 1.0])
+        look = world.materials.get(source.visual[0].material)
+        rgba = numbers_text([*look.color, look.alpha] if look is not None
+                            else [0.8, 0.8, 0.8, 1.0])
         ET.SubElement(material, "ambient").text = rgba
         ET.SubElement(material, "diffuse").text = rgba
     for collider in source.colliders:

@@ -58,7 +58,7 @@ def _link(robot: ET.Element, link: Link, files: LinkFiles, prefix: str,
         _origin(visual, (0.0, 0.0, 0.0))
         ET.SubElement(ET.SubElement(visual, "geometry"), "mesh", filename=prefix + files.visual)
         material = ET.SubElement(visual, "material", name=f"{link.name}_material")
-        ET.SubElement(material, "color", rgba=numbers_text([*color, 1.0]))
+        ET.SubElement(material, "color", rgba=numbers_text(color))
     for collider in link.colliders:
         collision = ET.SubElement(element, "collision", name=collider.name)
         geometry_parent = collision
@@ -128,10 +128,13 @@ def item_as_urdf(world: World, link: Link, files: LinkFiles, *, mesh_prefix: str
     return _document(robot)
 
 
-def _color(world: World, link: Link) -> tuple[float, float, float]:
-    if not link.visual:
-        return (0.8, 0.8, 0.8)
-    return world.materials.get(link.visual[0].material, (0.8, 0.8, 0.8))
+def _color(world: World, link: Link) -> tuple[float, float, float, float]:
+    """The RGBA of a link's visual: its first material's (URDF has one colour per
+    visual; the MTL beside the mesh has every material)."""
+    material = world.materials.get(link.visual[0].material) if link.visual else None
+    if material is None:
+        return (0.8, 0.8, 0.8, 1.0)
+    return (*material.color, material.alpha)
 
 
 def _pose_entry(link: Link) -> dict[str, object]:

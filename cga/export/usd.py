@@ -4,7 +4,8 @@ The robot world (:mod:`cga.export.world`) as a stage (pxr from ``usd-core``), me
 (``metersPerUnit = 1``), ``Z`` up (robotics; ``up="Y"`` gives a Y-up stage whose
 ``/World/building`` is turned by −90° about x, so the content is the same):
 
-* ``/World/Looks``: one ``UsdPreviewSurface`` material per export colour;
+* ``/World/Looks``: one ``UsdPreviewSurface`` material per material of the build (the
+  glb's, :mod:`cga.appearance`: linear colour, roughness, metallic, opacity);
 * ``/World/building/<link>``: an ``Xform`` per link at its pose (one per storey's
   structure, door leaf and item), holding its visual ``Mesh`` es (normals, bound material;
   one per structure node) and its colliders (``Cube`` or convex ``Mesh`` with
@@ -34,6 +35,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from cga.appearance.material import Material
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
@@ -86,14 +88,18 @@ class _StageWriter:
     def _materials(self) -> dict[str, Any]:
         out = {}
         self.UsdGeom.Scope.Define(self.stage, "/World/Looks")
-        for name, color in sorted({**self.world.materials, "collision": (0.9, 0.3, 0.3)}.items()):
+        collision = Material.of("collision", "collision", (0.9, 0.3, 0.3), 0.8, 0.0, 1.0)
+        for name, look in sorted({**self.world.materials, "collision": collision}.items()):
             material = self.UsdShade.Material.Define(self.stage, f"/World/Looks/{name}")
             shader = self.UsdShade.Shader.Define(self.stage, f"/World/Looks/{name}/surface")
             shader.CreateIdAttr("UsdPreviewSurface")
+            # UsdPreviewSurface colours are linear, like glTF's
             shader.CreateInput("diffuseColor", self.Sdf.ValueTypeNames.Color3f).Set(
-                self.Gf.Vec3f(*color))
-            shader.CreateInput("roughness", self.Sdf.ValueTypeNames.Float).Set(0.8)
-            shader.CreateInput("metallic", self.Sdf.ValueTypeNames.Float).Set(0.0)
+                self.Gf.Vec3f(*look.linear_rgba()[:3]))
+            shader.CreateInput("roughness", self.Sdf.ValueTypeNames.Float).Set(look.roughness)
+            shader.CreateInput("metallic", self.Sdf.ValueTypeNames.Float).Set(look.metallic)
+            if look.transparent:
+                shader.CreateInput("opacity", self.Sdf.ValueTypeNames.Float).Set(look.alpha)
             material.CreateSurfaceOutput().ConnectToSource(shader.ConnectableAPI(), "surface")
             out[name] = material
         return out

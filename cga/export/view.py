@@ -25,7 +25,7 @@ from PIL import Image
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
-from .palette import face_colors
+from .palette import face_colors, node_face_colors
 
 __all__ = ["render_view", "export_view"]
 
@@ -70,7 +70,7 @@ def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):
         if mesh is None or len(mesh.faces) == 0:
             continue
         tris.append(np.asarray(mesh.vertices)[np.asarray(mesh.faces)])
-        colors.append(face_colors(mesh, node.kind))
+        colors.append(node_face_colors(node) if mesh is node.mesh else face_colors(mesh, node.kind))
     if not tris:
         return np.zeros((0, 3, 3)), np.zeros((0, 3))
     return np.concatenate(tris), np.concatenate(colors)

@@ -35,13 +35,13 @@ from typing import Any, Literal
 
 import numpy as np
 
+from cga.appearance.material import Material
 from cga.collision import ConvexPiece, collision_parts, shrink_part, structure_pieces
 from cga.errors import ExportError
 from cga.scene import Scene, SceneNode
 
 from .frames import WORLD_TO_ROS, RosPose, pose_to_ros, world_to_ros
-from .obj import MeshGroup, node_material, vertex_colors
-from .palette import RGB
+from .obj import MeshGroup, mesh_groups
 
 __all__ = ["Box", "Collider", "Link", "Joint", "World", "robot_world", "box_inertia",
            "centre_of_mass", "identifier", "ItemJoints"]
@@ -114,12 +114,13 @@ class Joint:
 
 @dataclass(frozen=True)
 class World:
-    """A build as links and joints (ROS frame), with the colours of its materials."""
+    """A build as links and joints (ROS frame), with its materials by name (the glb's,
+    :mod:`cga.appearance`)."""
 
     name: str
     links: tuple[Link, ...]
     joints: tuple[Joint, ...]
-    materials: dict[str, RGB] = field(default_factory=dict)
+    materials: dict[str, Material] = field(default_factory=dict)
 
     def link(self, name: str) -> Link:
         return next(link for link in self.links if link.name == name)
@@ -177,11 +178,10 @@ class _Frame:
         return (world_to_ros(world_points) - self.origin) @ self.rotation
 
     def visual(self, node: SceneNode, label: str, vertices: np.ndarray | None = None
-               ) -> tuple[MeshGroup, str, RGB]:
-        material, color = node_material(node)
+               ) -> tuple[list[MeshGroup], dict[str, Material]]:
+        """The node's visual groups in this frame (one per material) and their materials."""
         points = np.asarray(node.mesh.vertices if vertices is None else vertices, dtype=float)
-        return (MeshGroup(label, self.local(points), np.asarray(node.mesh.faces), material,
-                          vertex_colors(node.mesh)), material, color)
+        return mesh_groups(node, label, self.local(points))
 
     def collider(self, name: str, piece: ConvexPiece) -> Collider:
         if piece.box is not None:
@@ -195,16 +195,18 @@ class _Frame:
                                              np.asarray(piece.faces), "collision"))
 
 
-def _structure_link(nodes: Sequence[SceneNode], name: str) -> tuple[Link, dict[str, RGB]]:
-    """One fixed link for the structure of a storey: each node's visual mesh (named by
-    the node, material by its kind) and every node's convex pieces."""
+def _structure_link(nodes: Sequence[SceneNode], name: str) -> tuple[Link, dict[str, Material]]:
+    """One fixed link for the structure of a storey: each node's visual meshes (named by
+    the node, one per material) and every node's convex pieces."""
     frame = _Frame(RosPose((0.0, 0.0, 0.0), 0.0))
-    visuals, colliders, materials = [], [], {}
+    visuals: list[MeshGroup] = []
+    colliders: list[Collider] = []
+    materials: dict[str, Material] = {}
     for node in nodes:
         label = identifier(node.path)
-        visual, material, color = frame.visual(node, node.path)
-        visuals.append(visual)
-        materials[material] = color
+        groups, used = frame.visual(node, node.path)
+        visuals.extend(groups)
+        materials.update(used)
         colliders += [frame.collider(f"{label}_c{k}", piece)
                       for k, piece in enumerate(structure_pieces(node))]
     return (Link(name, "structure", "structure", None, frame_pose(frame), tuple(visuals),
@@ -223,7 +225,7 @@ def frame_pose(frame: _Frame) -> RosPose:
     return RosPose((x, y, z), frame.yaw)
 
 
-def _door_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, RGB]]:
+def _door_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, Material]]:
     leaf = node.door
     assert leaf is not None
     closed = leaf.frame(0.0)
@@ -234,7 +236,7 @@ def _door_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, RGB]]
     # the node's mesh stands at the build's angle: bring it back to the closed leaf
     undo = closed @ np.linalg.inv(leaf.frame())
     vertices = np.asarray(node.mesh.vertices, dtype=float) @ undo[:3, :3].T + undo[:3, 3]
-    visual, material, color = frame.visual(node, name, vertices)
+    visual, used = frame.visual(node, name, vertices)
     centre, extents = leaf.box()
     box_world = closed[:3, :3] @ centre + closed[:3, 3]
     x, y, z = (float(v) for v in frame.local(box_world))
@@ -243,24 +245,26 @@ def _door_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, RGB]]
     density = node.item.density if node.item is not None else 500.0
     mass = float(np.prod(extents)) * density
     ixx, iyy, izz = box_inertia(mass, box.extents)
-    link = Link(name, "door", "door", node.path, pose, (visual,),
+    link = Link(name, "door", "door", node.path, pose, tuple(visual),
                 (Collider(f"{name}_c0", box=box),), mass=mass, com=(x, y, z),
                 inertia=(ixx, iyy, izz))
     joint = Joint(f"{name}_hinge", "revolute", ROOT, name, axis=(0.0, 0.0, leaf.axis[1]),
                   lower=leaf.lower, upper=leaf.upper, position=leaf.angle, state=leaf.state)
-    return link, joint, {material: color}
+    return link, joint, used
 
 
-def _item_link(node: SceneNode, name: str, items: ItemJoints) -> tuple[Link, Joint, dict[str, RGB]]:
+def _item_link(node: SceneNode, name: str, items: ItemJoints
+               ) -> tuple[Link, Joint, dict[str, Material]]:
     item = node.item
     turns = item.rotation % 4 if item is not None else 0
     label = identifier(item.model if item is not None else "item")
     parts = collision_parts(node) if not node.static else list(node.parts or (node.mesh,))
     frame = _Frame(pose_to_ros(centre_of_mass(parts), 90.0 * turns))
-    visual, material, color = frame.visual(node, label)
+    visual, used = frame.visual(node, label)
+    material = visual[0].material if visual else "collision"
     if node.static:  # details and rugs: seen, not touched (the checks ignore them too)
-        link = Link(name, "item", label, node.path, frame_pose(frame), (visual,), ())
-        return link, Joint(f"{name}_joint", "fixed", ROOT, name), {material: color}
+        link = Link(name, "item", label, node.path, frame_pose(frame), tuple(visual), ())
+        return link, Joint(f"{name}_joint", "fixed", ROOT, name), used
     mass = item.mass if item is not None else 0.0
     if not mass > 0.0:
         raise ExportError(f"furniture node '{node.path}' has no positive mass "
@@ -271,9 +275,9 @@ def _item_link(node: SceneNode, name: str, items: ItemJoints) -> tuple[Link, Joi
                                                  np.asarray(p.faces), material))
         for k, (p, v) in enumerate(zip(parts, solids)))
     stacked = np.vstack(solids)
-    link = Link(name, "item", label, node.path, frame_pose(frame), (visual,), colliders,
+    link = Link(name, "item", label, node.path, frame_pose(frame), tuple(visual), colliders,
                 mass=mass, inertia=box_inertia(mass, stacked.max(axis=0) - stacked.min(axis=0)))
-    return link, Joint(f"{name}_joint", items, ROOT, name), {material: color}
+    return link, Joint(f"{name}_joint", items, ROOT, name), used
 
 
 def robot_world(scene: Scene, nodes: Sequence[SceneNode], *,
@@ -306,7 +310,8 @@ def robot_world(scene: Scene, nodes: Sequence[SceneNode], *,
         raise ExportError(f"robot export of '{scene.name}': the scene has no building "
                           f"geometry (walls, slabs or masses) to put in the world")
     root = Link(ROOT, "structure", "building", None, RosPose((0.0, 0.0, 0.0), 0.0), (), ())
-    links, joints, materials = [root], [], {}
+    links, joints = [root], []
+    materials: dict[str, Material] = {}
     storeys: dict[str, list[SceneNode]] = {}
     for node in structure:
         storeys.setdefault(_storey(node), []).append(node)

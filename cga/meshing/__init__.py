@@ -49,8 +49,11 @@ def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[Sce
     list of SceneNode
         Masses and faces named by shape path (fitted to the storeys with interiors:
         their rooms and openings cut out, :mod:`.facades`); for each storey its floor solids
-        (walls, slab, roof), its stair and stairwell rail, then its furniture.
+        (walls, slab, roof), its stair and stairwell rail, then its furniture; every
+        node dressed with its materials (:mod:`cga.appearance.dress`).
     """
+    from cga.appearance.dress import dress_nodes
+
     nodes: list[SceneNode] = []
     cutters = None
     for shape in scene.terminals:
@@ -69,7 +72,7 @@ def scene_nodes(scene: Scene, library: "ModelLibrary | None" = None) -> list[Sce
         nodes.extend(floor_nodes(shape.plan))
         nodes.extend(stair_nodes(shape.plan))
         nodes.extend(item_node(item, shape.plan, library) for item in shape.plan.furniture)
-    return nodes
+    return dress_nodes(nodes, scene.floors, scene.looks().palette(scene.seed), library)
 
 
 def _storey_cutters(scene: Scene) -> "list[StoreyCutter]":

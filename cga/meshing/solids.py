@@ -145,7 +145,8 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
     well = plan.stairwell
     floor_area = plan.footprint if well is None else plan.footprint.difference(well)
     nodes.append(SceneNode(f"floor{plan.index}/slab", "slab",
-                           _trimesh(*_prism(floor_area, plan.elevation, y0)),
+                           _slab(floor_area, [r.interior for r in plan.rooms],
+                                 plan.elevation, y0),
                            extras={"floor": plan.index,
                                    "stairwell": below.id if (below := plan.stair_down) else None}))
     if plan.is_top:
@@ -249,6 +250,58 @@ def _prism(area: Polygon | MultiPolygon, y_low: float, y_high: float) -> tuple[n
     vertices[:n, 2] = vertices[n:, 2] = plan[:, 1]
     vertices[:n, 1], vertices[n:, 1] = y_low, y_high
     return vertices, np.vstack([caps, caps[:, ::-1] + n, *sides])
+
+
+def _slab(area: Polygon | MultiPolygon, rooms: list[Polygon], y_low: float,
+          y_high: float) -> trimesh.Trimesh:
+    """The floor slab: the prism over ``area`` whose walking surface is triangulated room
+    by room (each room's floor, then the rest: the walls' footprint), so every top
+    triangle lies in one room and the appearance can give each room its own floor
+    (docs/appearance.md). Shared corners are one vertex, so the slab stays watertight; if
+    a room's outline would break that (a corner on the slab's edge), the top is one
+    triangulation, as for any prism."""
+    vertices, faces = _prism(area, y_low, y_high)
+    pieces = [area.intersection(room) for room in rooms]
+    pieces = [p for p in pieces if not p.is_empty and p.area > _SLIVER]
+    rest = area.difference(shapely.union_all(pieces)) if pieces else area
+    rings = []
+    for piece in [*pieces, rest]:
+        for polygon in getattr(piece, "geoms", [piece]):
+            if isinstance(polygon, Polygon) and polygon.area > _SLIVER:
+                polygon = orient(polygon, sign=1.0)
+                rings.append([np.asarray(r.coords)[:-1]
+                              for r in (polygon.exterior, *polygon.interiors)])
+    n = len(vertices) // 2
+    index = {_key3(v): k for k, v in enumerate(vertices[n:], start=n)}
+    extra: list[np.ndarray] = []
+    top = []
+    for polygon_rings in rings:
+        flat = np.concatenate(polygon_rings)
+        ids = np.empty(len(flat), dtype=np.int64)
+        for k, (x, z) in enumerate(flat):
+            key = (round(float(x), _DIGITS), round(float(z), _DIGITS))
+            if key not in index:
+                index[key] = len(vertices) + len(extra)
+                extra.append(np.array([x, y_high, z]))
+            ids[k] = index[key]
+        triangles = np.asarray(manifold3d.triangulate(polygon_rings), dtype=np.int64)
+        top.append(ids[triangles.reshape(-1, 3)[:, ::-1]])
+    caps = _cap_count(faces, n)
+    candidate = _trimesh(np.vstack([vertices, *extra]) if extra else vertices,
+                         np.vstack([faces[:caps], faces[2 * caps:], *top]))
+    if candidate.is_watertight:
+        return candidate
+    return _trimesh(vertices, faces)
+
+
+def _cap_count(faces: np.ndarray, n: int) -> int:
+    """How many triangles one cap of a :func:`_prism` has (the bottom cap comes first,
+    then the top cap, then the sides)."""
+    return int(np.count_nonzero((faces < n).all(axis=1)))
+
+
+def _key3(vertex: np.ndarray) -> tuple[float, float]:
+    return (round(float(vertex[0]), _DIGITS), round(float(vertex[2]), _DIGITS))
 
 
 def _trimesh(vertices: np.ndarray, faces: np.ndarray) -> trimesh.Trimesh:

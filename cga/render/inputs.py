@@ -23,7 +23,7 @@ from cga.scene import Scene, SceneNode
 from cga.semantics import instance_ids, node_class
 
 from .raycast import Surface
-from .shading import surface_colors
+from .shading import node_colors, surface_colors
 
 __all__ = ["RoomOutline", "FloorOutline", "RenderInputs", "inputs_from_scene",
            "inputs_from_files", "MAX_INSTANCES"]
@@ -84,7 +84,7 @@ def _surfaces(nodes: tuple[SceneNode, ...], classes: dict[str, int], instances: 
                          f"at most {MAX_INSTANCES}")
     colors = colors or {}
     return tuple(Surface(n.path, n.kind, n.mesh, classes[n.path], instances[n.path],
-                         colors[n.path] if n.path in colors else surface_colors(n.mesh, n.kind))
+                         colors[n.path] if n.path in colors else node_colors(n))
                  for n in nodes)
 
 

@@ -1,7 +1,8 @@
 """The colour image: the scene's surface colours lit by a headlight and a sun.
 
-:func:`surface_colors` is the one place the renderer reads a surface's colour, so a
-richer material model (PBR materials and lights in the glb) changes this function only.
+:func:`surface_colors` and :func:`node_colors` are the one place the renderer reads a
+surface's colour: a glb primitive's material, or a scene node's materials
+(:mod:`cga.appearance`).
 :class:`Shader` is Lambertian with two lights and no shadows: a headlight at the camera
 (every visible surface is lit, as by a robot's lamp) and a sun from above, plus ambient
 light. It is a readable picture for people and detectors, not a photoreal one.
@@ -12,11 +13,12 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
-from cga.export.palette import face_colors
+from cga.export.palette import face_colors, node_face_colors
+from cga.scene import SceneNode
 
 from .raycast import Hits, RayScene
 
-__all__ = ["surface_colors", "Shader", "SKY"]
+__all__ = ["surface_colors", "node_colors", "Shader", "SKY"]
 
 SKY = np.array([0.80, 0.86, 0.93])
 """Colour of a pixel whose ray leaves the building (through a window or from above)."""
@@ -30,6 +32,12 @@ def surface_colors(mesh: trimesh.Trimesh, kind: str) -> np.ndarray:
     own colours (a furniture model's, a glb material's), else its kind's
     (:func:`cga.export.palette.face_colors`)."""
     return face_colors(mesh, kind)
+
+
+def node_colors(node: SceneNode) -> np.ndarray:
+    """``float[faces, 3]`` sRGB base colour of each triangle of a scene node: its
+    materials' when it is dressed (:func:`cga.export.palette.node_face_colors`)."""
+    return node_face_colors(node)
 
 
 class Shader:

@@ -90,7 +90,7 @@ _PARSE_ERRORS = (ValueError, IndexError, KeyError, TypeError, AttributeError,
 word where a number belongs, ...)."""
 
 _CACHE_KIND = "models"
-_CACHE_FORMAT = "cga-model-1"
+_CACHE_FORMAT = "cga-model-2"
 """Version of the cached record's layout; part of the cache key."""
 
 _VERTEX_LINE = re.compile(r"^[ \t]*v[ \t]", re.MULTILINE)
@@ -150,7 +150,8 @@ class ModelGeometry:
     the same file, so treat them as read-only.
 
     ``colors`` holds each part's RGBA vertex colours (uint8), or None for a part whose
-    file gave none.
+    file gave none; ``names`` the parts' OBJ group (or object) names, which name each
+    part's material class (``part_3_wood``, :mod:`cga.appearance`).
     """
 
     vertices: tuple[np.ndarray, ...]
@@ -159,6 +160,7 @@ class ModelGeometry:
     size: tuple[float, float, float]
     volume: float
     convex_parts: bool
+    names: tuple[str, ...] = ()
 
     @cached_property
     def parts(self) -> tuple[trimesh.Trimesh, ...]:
@@ -203,6 +205,11 @@ class FurnitureModel:
     @property
     def convex_parts(self) -> bool:
         return self.geometry.convex_parts
+
+    @property
+    def part_names(self) -> tuple[str, ...]:
+        """The parts' OBJ group names, in part order (:attr:`ModelGeometry.names`)."""
+        return self.geometry.names
 
     @property
     def volume(self) -> float:
@@ -375,7 +382,7 @@ def _to_cache(geometry: ModelGeometry, density: float, color: tuple[float, float
     buffer = io.BytesIO()
     np.savez(buffer, allow_pickle=False, counts=counts, meta=meta,
              vertices=np.concatenate(geometry.vertices), faces=np.concatenate(geometry.faces),
-             colors=np.concatenate(colors))
+             colors=np.concatenate(colors), names=np.array(geometry.names, dtype=str))
     return buffer.getvalue()
 
 
@@ -387,13 +394,15 @@ def _from_cache(data: bytes | None) -> _Record | None:
         with np.load(io.BytesIO(data), allow_pickle=False) as archive:
             counts, meta = archive["counts"], archive["meta"].tolist()
             vertices, faces, colors = archive["vertices"], archive["faces"], archive["colors"]
+            names = tuple(str(n) for n in archive["names"])
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
         return None
     v_ends, f_ends = np.cumsum(counts[:, 0])[:-1], np.cumsum(counts[:, 1])[:-1]
     geometry = ModelGeometry(
         vertices=tuple(np.split(vertices, v_ends)), faces=tuple(np.split(faces, f_ends)),
         colors=tuple(c if has else None for c, has in zip(np.split(colors, v_ends), counts[:, 2])),
-        size=(meta[0], meta[1], meta[2]), volume=meta[3], convex_parts=bool(meta[4]))
+        size=(meta[0], meta[1], meta[2]), volume=meta[3], convex_parts=bool(meta[4]),
+        names=names)
     return geometry, meta[5], (meta[6], meta[7], meta[8])
 
 
@@ -407,8 +416,9 @@ def _parse_geometry(path: Path, text: str) -> ModelGeometry:
                                    split_groups=True, split_objects=True, group_material=False)
     except _PARSE_ERRORS as exc:
         raise ModelFileError(path, f"cannot read the OBJ file ({excerpt(str(exc))})") from None
-    meshes = [scene.geometry[key] for key in sorted(scene.geometry, key=_natural_key)]
-    parts = [m for m in meshes if isinstance(m, trimesh.Trimesh) and len(m.faces)]
+    named = [(key, scene.geometry[key]) for key in sorted(scene.geometry, key=_natural_key)]
+    named = [(k, m) for k, m in named if isinstance(m, trimesh.Trimesh) and len(m.faces)]
+    parts = [m for _, m in named]
     if not parts:
         raise ModelFileError(path, "the file has no faces")
     mesh = cast(trimesh.Trimesh, trimesh.util.concatenate(parts))  # meshes join to a mesh
@@ -429,7 +439,7 @@ def _parse_geometry(path: Path, text: str) -> ModelGeometry:
         vertices=tuple(np.array(p.vertices, dtype=np.float64) for p in parts),
         faces=tuple(np.array(p.faces, dtype=np.int64) for p in parts),
         colors=tuple(_vertex_colors(p) for p in parts),
-        size=size, volume=0.0, convex_parts=True)
+        size=size, volume=0.0, convex_parts=True, names=tuple(k for k, _ in named))
     rebuilt = arrays.parts
     return replace(arrays, volume=sum(part_volume(p) for p in rebuilt),
                    convex_parts=all(is_convex_part(p) for p in rebuilt))

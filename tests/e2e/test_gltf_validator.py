@@ -1,4 +1,5 @@
-"""Every demo's glTF passes the Khronos glTF validator with no errors and no warnings.
+"""Every demo's glTF passes the Khronos glTF validator with no errors and no warnings,
+and every primitive has a material.
 
 Runs when the validator is installed: ``CGA_GLTF_VALIDATOR_DIR`` names an npm-installed
 ``gltf-validator`` package (``.ci/run`` sets it up) and ``node`` is on the PATH.
@@ -9,6 +10,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import struct
 import subprocess
 from pathlib import Path
 
@@ -48,3 +50,10 @@ def test_demo_glb_has_no_validation_errors(grammar, tmp_path):
     errors = [m for m in report["issues"]["messages"] if m["severity"] in (0, 1)]
     assert report["issues"]["numErrors"] == 0, errors[:20]
     assert report["issues"]["numWarnings"] == 0, errors[:20]
+    # every primitive has a PBR material (read from the file's JSON chunk directly)
+    data = glb.read_bytes()
+    length = struct.unpack_from("<I", data, 12)[0]
+    document = json.loads(data[20:20 + length])
+    primitives = [p for m in document["meshes"] for p in m["primitives"]]
+    assert primitives and all("material" in p for p in primitives)
+    assert all("pbrMetallicRoughness" in m for m in document["materials"])

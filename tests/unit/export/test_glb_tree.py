@@ -76,8 +76,12 @@ def test_items_have_pivots_and_share_meshes_with_normals(glb):
     assert all("NORMAL" in p["attributes"] for m in doc["meshes"] for p in m["primitives"])
     # loaded back, every mesh lands where the scene node is
     loaded = trimesh.load(io.BytesIO(data), file_type="glb")
+    children = loaded.graph.transforms.children
     for node in items[:10]:
-        transform, geometry = loaded.graph[node.path]
-        placed = trimesh.transform_points(loaded.geometry[geometry].vertices, transform)
+        # a mesh of several primitives (one per material) loads as one child frame each
+        frames = [node.path] if loaded.graph[node.path][1] else children[node.path]
+        placed = np.vstack([trimesh.transform_points(loaded.geometry[geometry].vertices,
+                                                     transform)
+                            for transform, geometry in (loaded.graph[f] for f in frames)])
         assert np.allclose([placed.min(axis=0), placed.max(axis=0)], node.mesh.bounds,
                            atol=1e-5), node.path

@@ -1,0 +1,176 @@
+"""Dressing scene nodes: a material for every triangle of every node.
+
+Every node gets :attr:`~cga.scene.SceneNode.materials` (its distinct materials) and
+:attr:`~cga.scene.SceneNode.face_materials` (an index into them per triangle), which
+every exporter writes (one glTF primitive, OBJ ``usemtl`` run or USD mesh per material):
+
+* a wall's faces take the paint of the room they face (a point a little in front of
+  the face, along its normal, lies in that room's interior), the facade outside the
+  footprint, and the paint of the wall's first room elsewhere (jambs, tops);
+* a slab's walking surface takes each room's floor (:func:`cga.meshing.solids` cuts
+  the top room by room, so every top triangle lies in one room), its underside the
+  ceiling, its edges ``slab``; a roof slab is ``roof`` with a ``ceiling`` underside;
+* a furniture item's faces take the materials of its model's parts, by the part
+  (OBJ group) they belong to, and their own colour when the build is neutral;
+* stairs, rails, masses and faces one material of their kind.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+import shapely
+
+from cga.model import FloorPlan
+from cga.scene import SceneNode
+
+from .material import Material
+from .palette import Palette
+
+__all__ = ["dress_nodes", "PROBE"]
+
+PROBE = 0.05
+"""How far in front of a wall face (m) the room it faces is looked up."""
+
+_UP = 0.5  # a face whose normal's y exceeds this faces up (below -this: down)
+
+
+def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette: Palette,
+                models: "object | None" = None) -> list[SceneNode]:
+    """``nodes`` with their materials set (module notes).
+
+    Parameters
+    ----------
+    nodes:
+        Scene nodes as the meshing layer makes them.
+    plans:
+        The build's floor plans (rooms and their types).
+    palette:
+        The build's materials.
+    models:
+        The furniture model library (:class:`~cga.operations.furniture.library.ModelLibrary`)
+        the items were posed from; needed when ``nodes`` has furniture.
+    """
+    by_floor = {plan.index: plan for plan in plans}
+    out = []
+    for node in nodes:
+        floor = _floor_of(node.path)
+        plan = by_floor.get(floor) if floor is not None else None
+        materials, index = _dress(node, plan, palette, models)
+        out.append(replace(node, **_compact(materials, index)))
+    return out
+
+
+def _compact(materials: list[Material], index: np.ndarray) -> dict[str, Any]:
+    """The materials the faces use, each once, in candidate order, and the faces'
+    indices into them."""
+    used = set(np.unique(index).tolist())
+    unique: dict[str, int] = {}
+    order: list[Material] = []
+    remap = np.zeros(len(materials), dtype=np.int64)
+    for k, m in enumerate(materials):
+        if k not in used:
+            continue
+        if m.name not in unique:
+            unique[m.name] = len(order)
+            order.append(m)
+        remap[k] = unique[m.name]
+    return {"materials": tuple(order), "face_materials": remap[index]}
+
+
+def _floor_of(path: str) -> int | None:
+    head = path.split("/", 1)[0]
+    return int(head[5:]) if head.startswith("floor") and head[5:].isdigit() else None
+
+
+def _dress(node: SceneNode, plan: FloorPlan | None, palette: Palette,
+           models: "object | None") -> tuple[list[Material], np.ndarray]:
+    """Candidate materials and each face's index into them."""
+    count = len(node.mesh.faces)
+    if node.kind == "furniture" and node.item is not None and models is not None:
+        return _furniture(node, plan, palette, models)
+    if plan is not None and node.kind == "wall":
+        return _wall(node, plan, palette)
+    if plan is not None and node.kind in ("slab", "roof"):
+        return _slab(node, plan, palette)
+    surface = {"stair": "stair", "rail": "rail", "mass": "mass", "face": "face"}.get(node.kind,
+                                                                                     "mass")
+    return [palette.surface(surface)], np.zeros(count, dtype=np.int64)
+
+
+def _rooms_at(plan: FloorPlan, points: np.ndarray) -> np.ndarray:
+    """The index into ``plan.rooms`` of the room interior holding each plan point
+    ``(x, z)``; -1 outside every room."""
+    found = np.full(len(points), -1, dtype=np.int64)
+    for k, room in enumerate(plan.rooms):
+        inside = shapely.contains_xy(room.interior, points[:, 0], points[:, 1])
+        found[inside & (found < 0)] = k
+    return found
+
+
+def _room_material(palette: Palette, surface: str, plan: FloorPlan, k: int) -> Material:
+    room = plan.rooms[k]
+    return palette.surface(surface, room_type=room.type,
+                           key=(f"floor{plan.index}", f"room{room.id}"))
+
+
+def _wall(node: SceneNode, plan: FloorPlan, palette: Palette) -> tuple[list[Material], np.ndarray]:
+    mesh = node.mesh
+    probes = mesh.triangles_center + mesh.face_normals * PROBE
+    rooms = _rooms_at(plan, probes[:, [0, 2]])
+    outside = ~shapely.contains_xy(plan.footprint, probes[:, 0], probes[:, 2])
+    own = [r for r in node.extras.get("rooms", []) if r >= 0]
+    ids = [room.id for room in plan.rooms]
+    default = ids.index(min(own)) if own and min(own) in ids else -1
+    materials = [_room_material(palette, "wall", plan, k) for k in range(len(plan.rooms))]
+    materials.append(palette.surface("facade"))
+    fallback = materials[default] if default >= 0 else palette.surface("wall")
+    materials.append(fallback)
+    index = np.where(rooms >= 0, rooms, len(materials) - 1)
+    index[(rooms < 0) & outside] = len(materials) - 2
+    return materials, index
+
+
+def _slab(node: SceneNode, plan: FloorPlan, palette: Palette) -> tuple[list[Material], np.ndarray]:
+    mesh = node.mesh
+    normals_y = mesh.face_normals[:, 1]
+    top = normals_y > _UP
+    down = normals_y < -_UP
+    edge_surface = "roof" if node.kind == "roof" else "slab"
+    materials = [palette.surface(edge_surface), palette.surface("ceiling")]
+    index = np.zeros(len(mesh.faces), dtype=np.int64)
+    index[down] = 1
+    if node.kind == "roof":
+        return materials, index
+    rooms = _rooms_at(plan, mesh.triangles_center[top][:, [0, 2]])
+    floors = [_room_material(palette, "floor", plan, k) for k in range(len(plan.rooms))]
+    top_index = np.where(rooms >= 0, rooms + len(materials), 0)
+    index[top] = top_index
+    return materials + floors, index
+
+
+def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette,
+               models: object) -> tuple[list[Material], np.ndarray]:
+    item = node.item
+    assert item is not None
+    model = models.get(item.model)  # type: ignore[attr-defined]
+    counts = [len(p.faces) for p in model.parts]
+    names = model.part_names or tuple(f"part_{k}" for k in range(len(counts)))
+    key = (f"floor{plan.index}", f"room{item.room}") if plan is not None else ()
+    materials = []
+    for part, name in zip(model.parts, names):
+        visual = part.visual
+        if visual is not None and visual.kind in ("vertex", "face"):
+            colors = np.asarray(visual.vertex_colors)[:, :3]
+            r, g, b = (float(c) / 255.0 for c in colors.mean(axis=0))
+            color = (r, g, b)
+        else:
+            color = model.color
+        materials.append(palette.part(item.model, name, color, key=key))
+    index = np.repeat(np.arange(len(counts), dtype=np.int64), counts)
+    if len(index) != len(node.mesh.faces):  # a mesh not made from the model's parts
+        return materials[:1], np.zeros(len(node.mesh.faces), dtype=np.int64)
+    return materials, index
