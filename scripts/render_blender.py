@@ -142,6 +142,9 @@ def _in_blender(options: argparse.Namespace) -> None:
     scene.cycles.samples = options.samples
     scene.cycles.use_denoising = False
     scene.cycles.max_bounces = 4
+    scene.cycles.sample_clamp_indirect = 1.0  # few samples: no fireflies
+    scene.cycles.caustics_reflective = False
+    scene.cycles.caustics_refractive = False
     scene.render.resolution_x = options.width
     scene.render.resolution_y = options.height
     scene.render.resolution_percentage = 100

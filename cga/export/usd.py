@@ -19,6 +19,9 @@ The robot world (:mod:`cga.export.world`) as a stage (pxr from ``usd-core``), me
 * every door and item prim, and every structure node's mesh, carries a semantic class
   label (``UsdSemantics.LabelsAPI``, taxonomy ``class``: ``wall``, ``slab``, ``door``,
   the model name, ...) and its scene node path (``cga:node``);
+* ``/World/building/lights``: each room's ceiling lights as ``UsdLux.SphereLight`` s
+  (5 cm radius, the light's candela as luminance over its projected area, its colour
+  temperature; :mod:`cga.appearance.lights`);
 * ``/World/physicsScene``: gravity along −up.
 
 The stage passes ``UsdUtils.ComplianceChecker`` without errors (tested).
@@ -35,13 +38,15 @@ from typing import Any, Literal
 
 import numpy as np
 
+from cga.appearance.lights import Light
 from cga.appearance.material import Material
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
+from .frames import world_to_ros
 from .obj import MeshGroup
-from .world import ROOT, Joint, Link, World, robot_world
+from .world import ROOT, Joint, Link, World, identifier, robot_world
 
 __all__ = ["USD_EXTRA", "world_as_stage", "export_usd"]
 
@@ -207,8 +212,37 @@ class _StageWriter:
             math.degrees(joint.position))
 
 
-def world_as_stage(world: World, *, up: Literal["Z", "Y"] = "Z") -> Any:
-    """The world as an in-memory ``pxr.Usd.Stage`` (see the module notes).
+    def lights(self, lights: Sequence[Light]) -> None:
+        """Each ceiling light as a small ``UsdLux.SphereLight`` under
+        ``/World/building/lights`` (ROS frame, like the links): its luminance is the
+        light's candela over the sphere's projected area, its colour its temperature."""
+        from pxr import UsdLux
+
+        if not lights:
+            return
+        self.UsdGeom.Scope.Define(self.stage, f"/World/{ROOT}/lights")
+        area = math.pi * _LIGHT_RADIUS ** 2
+        for light in lights:
+            path = f"/World/{ROOT}/lights/{identifier(light.name)}"
+            sphere = UsdLux.SphereLight.Define(self.stage, path)
+            sphere.AddTranslateOp().Set(self.Gf.Vec3d(*(float(v) for v in
+                                                          world_to_ros(light.position))))
+            sphere.CreateRadiusAttr(_LIGHT_RADIUS)
+            sphere.CreateIntensityAttr(light.intensity / area)
+            sphere.CreateEnableColorTemperatureAttr(True)
+            sphere.CreateColorTemperatureAttr(light.temperature)
+            sphere.GetPrim().CreateAttribute("cga:node", self.Sdf.ValueTypeNames.String).Set(
+                light.name)
+
+
+_LIGHT_RADIUS = 0.05
+"""Radius (m) of the sphere lights standing for the ceiling lights."""
+
+
+def world_as_stage(world: World, *, up: Literal["Z", "Y"] = "Z",
+                   lights: Sequence[Light] = ()) -> Any:
+    """The world as an in-memory ``pxr.Usd.Stage`` (see the module notes), with the
+    build's ceiling ``lights``.
 
     Raises
     ------
@@ -219,6 +253,7 @@ def world_as_stage(world: World, *, up: Literal["Z", "Y"] = "Z") -> Any:
     for link in world.links:
         if link.name != ROOT:
             writer.link(link)
+    writer.lights(lights)
     return writer.stage
 
 
@@ -233,7 +268,7 @@ def export_usd(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: st
         ``usd-core`` is not installed, or see :func:`cga.export.world.robot_world`.
     """
     _pxr()
-    stage = world_as_stage(robot_world(scene, nodes), up=up)
+    stage = world_as_stage(robot_world(scene, nodes), up=up, lights=scene.lights)
     with tempfile.TemporaryDirectory(prefix="cga-usd-") as folder:
         temporary = Path(folder) / f"{name}.usdc"
         if not stage.GetRootLayer().Export(os.fspath(temporary)):

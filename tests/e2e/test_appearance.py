@@ -166,3 +166,28 @@ def test_over_100_seeds_materials_vary_repeat_and_keep_their_targets(house):
                                   if shapely.contains_xy(r.interior, c[0], c[2])]
                         assert (room.type or "").lower() in rooms
     assert len(signatures) == 100
+
+
+def _with_variable(tmp_path: Path, line: str) -> Path:
+    text = (DEMOS / "massing.grammar").read_text()
+    grammar = tmp_path / "look.grammar"
+    grammar.write_text(text.replace("Variables:\n", f"Variables:\n  {line}\n", 1))
+    return grammar
+
+
+def test_the_grammar_variable_switches_materials_and_the_option_wins(tmp_path):
+    grammar = _with_variable(tmp_path, 'materials = "random";')
+    scene = build(grammar, seed=2, formats=[], physics=False, quiet=True)
+    assert scene.looks().mode == "random"
+    assert build(grammar, seed=2, formats=[], physics=False, quiet=True,
+                 materials="neutral").looks().mode == "neutral"
+
+
+def test_a_bad_material_mode_is_a_usage_error(tmp_path):
+    from cga.errors import UsageError
+
+    grammar = _with_variable(tmp_path, 'materials = "loud";')
+    with pytest.raises(UsageError, match="'materials' must be one of neutral, random"):
+        build(grammar, seed=2, formats=[], physics=False, quiet=True)
+    with pytest.raises(UsageError, match="--materials"):
+        build(DEMOS / "massing.grammar", formats=[], physics=False, quiet=True, materials="x")

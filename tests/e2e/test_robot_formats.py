@@ -354,6 +354,10 @@ def test_usd_opens_and_validates_with_physics_and_labels(built):
     labelled = [p for p in prims if p.HasAPI(UsdSemantics.LabelsAPI, "class")]
     nodes = {p.GetAttribute("cga:node").Get() for p in labelled}
     assert nodes == {n["path"] for n in doc["nodes"]}  # storeys' links are not labelled
+    from pxr import UsdLux
+
+    lights = [p for p in prims if p.IsA(UsdLux.SphereLight)]
+    assert len(lights) == len(doc["lights"])
 
 
 # -- SDFormat -----------------------------------------------------------------------------

@@ -117,3 +117,21 @@ def test_joints_belong_to_the_wall_running_through():
     corner = box(0, 0, 0.2, 0.2)
     owners = [w.id for w in (south, west) if footprints[w.id].contains(corner)]
     assert len(owners) == 1
+
+
+def test_the_walking_surface_is_cut_room_by_room():
+    # every upward triangle of the slab lies in one room's interior or in none (the
+    # walls' footprint), so each room can have its own floor; the slab stays watertight
+    plan = three_rooms()
+    slab = next(n for n in floor_nodes(plan) if n.kind == "slab")
+    assert slab.mesh.is_watertight
+    up = slab.mesh.face_normals[:, 1] > 0.5
+    triangles = [shapely.Polygon(t[:, [0, 2]]) for t in slab.mesh.triangles[up]]
+    interiors = [r.interior for r in plan.rooms]
+    for triangle in triangles:
+        inside = [room.covers(triangle.buffer(-1e-9)) for room in interiors]
+        overlapping = [room.intersection(triangle).area > 1e-9 for room in interiors]
+        assert sum(inside) == sum(overlapping) <= 1
+    # the rooms' floors together are the rooms' interiors
+    covered = sum(t.area for t in triangles if any(r.covers(t.buffer(-1e-9)) for r in interiors))
+    assert covered == pytest.approx(sum(r.area for r in interiors))
