@@ -256,3 +256,32 @@ def test_a_read_only_output_folder_is_an_error(tmp_path, capsys):
     finally:
         out.chmod(0o755)
     assert "cannot write into the output folder" in capsys.readouterr().err
+
+
+# --- issue 18: engines ------------------------------------------------------------
+
+def test_the_local_engine_never_imports_ray(tmp_path):
+    """Ray is an optional extra: the default engine and the command line run without it."""
+    import subprocess
+    import sys
+
+    grammar = tmp_path / "block.grammar"
+    grammar.write_text(GOOD)
+    script = ("import sys\nfrom cga.cli import main\n"
+              f"assert main(['batch', {str(grammar)!r}, '-n', '2', '--jobs', '2', '--out', "
+              f"{str(tmp_path / 'out')!r}, '--no-physics', '--quiet']) == 0\n"
+              "assert 'ray' not in sys.modules, 'ray was imported'\n")
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+
+
+def test_the_ray_engine_without_ray_says_how_to_install_it(tmp_path, monkeypatch, capsys):
+    import sys
+
+    grammar = tmp_path / "block.grammar"
+    grammar.write_text(GOOD)
+    monkeypatch.setitem(sys.modules, "ray", None)  # `import ray` fails as if not installed
+    assert main(["batch", str(grammar), "-n", "1", "--out", str(tmp_path / "out"),
+                 "--engine", "ray", "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert 'the Ray engine needs Ray: pip install "cga[ray]"' in err and "Traceback" not in err
