@@ -56,10 +56,26 @@ def stack_plans(plans: Sequence[FloorPlan]) -> list[FloorPlan]:
 
 
 def stack_storeys(terminals: Sequence[Shape]) -> list[Shape]:
-    """The terminal shapes with their storeys' plans stacked (:func:`stack_plans`)."""
+    """The terminal shapes with their storeys' plans stacked (:func:`stack_plans`).
+
+    Several ``make_floor`` pieces of one storey (wings) are first joined into one plan
+    (:func:`cga.wings.join_wings`), kept on the first piece's shape; the other pieces'
+    shapes are dropped, their rooms being in that plan."""
+    from .wings import join_wings
+
     at = [k for k, shape in enumerate(terminals) if shape.plan is not None]
-    plans = stack_plans([terminals[k].plan for k in at])  # type: ignore[misc]
-    out = list(terminals)
-    for k, plan in zip(at, plans):
-        out[k] = out[k].derive(plan=plan)
-    return out
+    pieces = [terminals[k].plan for k in at]
+    plans = stack_plans(join_wings(pieces))  # type: ignore[arg-type]
+    out: list[Shape | None] = list(terminals)
+    seen: set[int] = set()
+    carriers = []
+    for k, piece in zip(at, pieces):
+        assert piece is not None
+        if piece.index in seen:
+            out[k] = None  # a wing whose rooms are in its storey's joined plan
+        else:
+            seen.add(piece.index)
+            carriers.append(k)
+    for k, plan in zip(carriers, plans):
+        out[k] = terminals[k].derive(plan=plan)
+    return [shape for shape in out if shape is not None]

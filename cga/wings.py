@@ -1,0 +1,422 @@
+"""One storey from several ``make_floor`` pieces: wings.
+
+A grammar may cut a storey into wings (``split("x"){ ~1 : Wing | ~1 : Wing }``) and run
+``make_floor`` on each. Each wing is then partitioned, typed and furnished on its own,
+and they meet along a *party wall*: the outer wall of one wing back to back with the
+outer wall of the other. Every consumer of a build (meshing, checks, exports) expects one
+plan per storey, so after the derivation the wings of a storey are joined into one
+:class:`~cga.model.FloorPlan` (:func:`join_wings`):
+
+* rooms, walls, doors, windows and furniture keep their order, wing after wing (wings
+  ordered by position: x, then z), with ids shifted so they stay unique; the room graphs
+  are joined at the outside;
+* the footprint is the union of the wings' footprints (the wings must touch along a
+  wall: a storey is one building);
+* a window in a party wall would look into the neighbouring wing's wall: it is left
+  out, with an info;
+* the wings are joined by a doorway through the party wall between two circulation
+  rooms (halls, corridors) that face each other across it, the widest stretch they
+  share, so a robot entering by one front door reaches every wing; wings without such a
+  pair stay joined only through the outside (each has its own front door), which the
+  plan's diagnostics say.
+
+A wing's front door may lie in a party wall only if the rules put it there; it then
+opens into the neighbour's wall, and the navigability report names that door.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+
+import networkx as nx
+import shapely
+from shapely.geometry import LineString, Point, Polygon
+
+from .errors import DerivationError
+from .model import DOOR_OPEN_ANGLE, OUTSIDE, Diagnostic, Door, FloorPlan, FurnitureItem, Opening, Wall
+
+__all__ = ["join_wings"]
+
+_TOUCH = 1e-6
+"""Distance (m) within which two wings' walls count as back to back."""
+
+
+def join_wings(plans: Sequence[FloorPlan]) -> list[FloorPlan]:
+    """The plans with every storey's wings joined into one plan (see the module notes);
+    storeys of one piece are returned unchanged, in the order given.
+
+    Raises
+    ------
+    DerivationError
+        Wings of one storey stand at different heights or do not touch.
+    """
+    groups: dict[int, list[FloorPlan]] = {}
+    for plan in plans:
+        groups.setdefault(plan.index, []).append(plan)
+    out = []
+    for plan in plans:
+        group = groups[plan.index]
+        if len(group) == 1:
+            out.append(plan)
+        elif plan is group[0]:
+            out.append(_join(group))
+    return out
+
+
+def _join(wings: list[FloorPlan]) -> FloorPlan:
+    index = wings[0].index
+    if len({(w.elevation, w.height) for w in wings}) > 1:
+        raise DerivationError(
+            f"the {len(wings)} make_floor pieces of floor {index} stand at different heights "
+            f"({', '.join(f'{w.elevation:g}–{w.elevation + w.height:g} m' for w in wings)})",
+            hint="split the storey into wings after repeated_split, so they share its height")
+    wings = sorted(wings, key=lambda w: (w.footprint.bounds[0], w.footprint.bounds[1]))
+    footprint = shapely.union_all([w.footprint for w in wings])
+    if not isinstance(footprint, Polygon):
+        raise DerivationError(
+            f"the {len(wings)} make_floor pieces of floor {index} do not touch: a storey is "
+            f"one building, its wings meet along a wall",
+            hint="split the storey into wings that share a side, or build separate lots")
+    footprint = shapely.simplify(footprint, 0.0)
+    shifted = []
+    room_base = wall_base = door_base = window_base = 0
+    for wing in wings:
+        shifted.append(_shift(wing, room_base, wall_base, door_base, window_base))
+        room_base += max((r.id for r in wing.rooms), default=-1) + 1
+        wall_base += max((w.id for w in wing.walls), default=-1) + 1
+        door_base += max((d.id for d in wing.doors), default=-1) + 1
+        window_base += max((w.id for w in wing.windows), default=-1) + 1
+    first = shifted[0]
+    plan = first.with_changes(
+        footprint=footprint,
+        rooms=tuple(r for w in shifted for r in w.rooms),
+        walls=tuple(x for w in shifted for x in w.walls),
+        doors=tuple(d for w in shifted for d in w.doors),
+        windows=tuple(x for w in shifted for x in w.windows),
+        furniture=tuple(f for w in shifted for f in w.furniture),
+        room_graph=_joined_graph([w.room_graph for w in shifted]),
+        diagnostics=tuple(d for w in shifted for d in w.diagnostics),
+        entry=next((w.entry for w in shifted if w.front_door() is not None), first.entry),
+        core=next((w.core for w in shifted if w.core is not None), None),
+        core_room=next((w.core_room for w in shifted if w.core is not None), None),
+        dcel=None, layout=None)
+    cores = [w for w in shifted if w.core is not None]
+    if len(cores) > 1:
+        plan = plan.with_changes(diagnostics=plan.diagnostics + (Diagnostic(
+            "info", "make_floor",
+            f"{len(cores)} wings of floor {index} reserved a stair core; the building's stair "
+            f"stands in the first wing's core (room {cores[0].core_room}), the other cores "
+            f"are empty rooms typed Stair: give the other wings' make_floor stair = \"none\"",
+            floor=index),))
+    owner = {r.id: k for k, w in enumerate(shifted) for r in w.rooms}
+    party = _party_walls(plan, owner, shifted)
+    plan = _without_party_windows(plan, party)
+    had_front = plan.front_door() is not None
+    plan, joined = _party_front_doors(plan, party, owner)
+    plan = _join_circulation(plan, party, owner, len(shifted), joined)
+    if had_front and plan.front_door() is None:
+        plan = _new_front_door(plan, party)
+    return plan
+
+
+def _shift(plan: FloorPlan, rooms: int, walls: int, doors: int, windows: int) -> FloorPlan:
+    def room(r: int) -> int:
+        return r if r == OUTSIDE else r + rooms
+
+    def item(i: FurnitureItem) -> FurnitureItem:
+        name = i.name
+        if i.is_detail and i.door is not None:
+            name = f"door{i.door + doors}" if name == f"door{i.door}" else name
+        elif i.is_detail and name.startswith("window") and name[6:].isdigit():
+            name = f"window{int(name[6:]) + windows}"
+        return replace(i, room=room(i.room), name=name,
+                       door=i.door + doors if i.door is not None else None)
+
+    return plan.with_changes(
+        rooms=tuple(replace(r, id=r.id + rooms) for r in plan.rooms),
+        walls=tuple(replace(w, id=w.id + walls, rooms=(room(w.rooms[0]), room(w.rooms[1])))
+                    for w in plan.walls),
+        doors=tuple(replace(d, id=d.id + doors, wall=d.wall + walls,
+                            rooms=(room(d.rooms[0]), room(d.rooms[1])),
+                            swing_room=room(d.swing_room)) for d in plan.doors),
+        windows=tuple(replace(w, id=w.id + windows, wall=w.wall + walls, room=room(w.room))
+                      for w in plan.windows),
+        furniture=tuple(item(i) for i in plan.furniture),
+        room_graph=_shifted_graph(plan.room_graph, rooms, walls, doors),
+        entry=room(plan.entry) if plan.entry is not None else None,
+        core_room=room(plan.core_room) if plan.core_room is not None else None,
+        diagnostics=tuple(replace(d, room=room(d.room)) if d.room is not None else d
+                          for d in plan.diagnostics))
+
+
+def _shifted_graph(graph: "nx.Graph | None", rooms: int, walls: int, doors: int) -> "nx.Graph | None":
+    if graph is None:
+        return None
+    out = nx.relabel_nodes(graph, {n: n if n == OUTSIDE else n + rooms for n in graph.nodes})
+    for _, _, data in out.edges(data=True):
+        if data.get("door") is not None:
+            data["door"] += doors
+        if data.get("wall") is not None:
+            data["wall"] += walls
+    return out
+
+
+def _joined_graph(graphs: list["nx.Graph | None"]) -> "nx.Graph | None":
+    present = [g for g in graphs if g is not None]
+    return nx.compose_all(present) if present else None
+
+
+def _party_walls(plan: FloorPlan, owner: dict[int, int],
+                 wings: list[FloorPlan]) -> dict[int, LineString]:
+    """Outer walls lying on another wing's outline: wall id → the stretch they share."""
+    out = {}
+    for wall in plan.walls:
+        if not wall.outer:
+            continue
+        mine = owner[wall.rooms[0]]
+        line = wall.segment()
+        for k, wing in enumerate(wings):
+            if k == mine:
+                continue
+            shared = line.intersection(wing.footprint.exterior.buffer(_TOUCH))
+            if shared.length > _TOUCH:
+                out[wall.id] = shared
+    return out
+
+
+def _without_party_windows(plan: FloorPlan, party: dict[int, LineString]) -> FloorPlan:
+    """The plan less the windows (and their panes) that face a neighbouring wing."""
+    gone = [w for w in plan.windows if w.wall in party
+            and party[w.wall].buffer(w.width / 2 + _TOUCH).covers(Point(w.position))]
+    if not gone:
+        return plan
+    ids = {w.id for w in gone}
+    walls = []
+    for wall in plan.walls:
+        drop = {(round(w.position[0], 6), round(w.position[1], 6)) for w in gone if w.wall == wall.id}
+        kept = tuple(o for o in wall.openings if not (
+            o.kind == "window" and tuple(round(c, 6) for c in wall.point_at(o.center)) in drop))
+        walls.append(replace(wall, openings=kept) if len(kept) != len(wall.openings) else wall)
+    names = {(w.room, f"window{w.id}") for w in gone}
+    note = Diagnostic("info", "make_floor", f"left out {len(gone)} window(s) in the walls "
+                      f"between wings (they would look into the neighbouring wing's wall)",
+                      floor=plan.index)
+    return plan.with_changes(
+        walls=tuple(walls), windows=tuple(w for w in plan.windows if w.id not in ids),
+        furniture=tuple(i for i in plan.furniture
+                        if not (i.is_detail and (i.room, i.name) in names)),
+        diagnostics=plan.diagnostics + (note,))
+
+
+def _facing(plan: FloorPlan, party: dict[int, LineString], wall: Wall,
+            at: tuple[float, float]) -> Wall | None:
+    """The party wall of another wing back to back with ``wall`` at point ``at``."""
+    point = Point(at)
+    return next((plan.wall(w) for w in party if w != wall.id
+                 and plan.wall(w).segment().distance(point) < _TOUCH), None)
+
+
+def _doorway(door: Door, rooms: tuple[int, int]) -> Door:
+    """``door`` as an open doorway (no leaf) between two rooms of different wings."""
+    return replace(door, rooms=rooms, is_front=False, reason="reachability", state="open",
+                   angle=DOOR_OPEN_ANGLE, leaf=False, swing_room=rooms[0])
+
+
+def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
+                       owner: dict[int, int]) -> tuple[FloorPlan, set[tuple[int, int]]]:
+    """A wing's front door in a party wall would open into the neighbour's wall: it
+    becomes the doorway between the two wings (cut through both walls). Returns the plan
+    and the pairs of wings so joined."""
+    joined: set[tuple[int, int]] = set()
+    walls = {w.id: w for w in plan.walls}
+    doors, gone, notes = [], set(), []
+    graph = plan.room_graph.copy() if plan.room_graph is not None else None
+    for door in plan.doors:
+        other = _facing(plan, party, walls[door.wall], door.position) \
+            if door.is_front and door.wall in party else None
+        if other is None:
+            doors.append(door)
+            continue
+        inside = door.rooms[0] if door.rooms[1] == OUTSIDE else door.rooms[1]
+        rooms = (inside, other.rooms[0])
+        gone.add(door.id)
+        if any(d.id in gone and set(d.rooms) == set(rooms)
+               and Point(d.position).distance(Point(door.position)) < d.width for d in doors):
+            continue  # both wings put their front doors here, face to face: one doorway
+        walls[other.id] = walls[other.id].with_opening(Opening(
+            "door", other.segment().project(Point(door.position)), door.width, door.height))
+        doors.append(_doorway(door, rooms))
+        first, second = sorted((owner[rooms[0]], owner[rooms[1]]))
+        joined.add((first, second))
+        if graph is not None:
+            if graph.has_edge(inside, OUTSIDE):
+                graph.remove_edge(inside, OUTSIDE)
+            graph.add_edge(*rooms, door=door.id, wall=door.wall, reason="wings")
+        notes.append(Diagnostic("info", "make_floor",
+                                f"door {door.id}, a wing's front door in the wall between "
+                                f"wings, is the doorway from {plan.room(inside).label} to "
+                                f"{plan.room(other.rooms[0]).label}", floor=plan.index))
+    if not gone:
+        return plan, joined
+    plan = plan.with_changes(
+        walls=tuple(walls[w.id] for w in plan.walls), doors=tuple(doors), room_graph=graph,
+        furniture=tuple(i for i in plan.furniture if not (i.is_detail and i.door in gone)),
+        diagnostics=plan.diagnostics + tuple(notes))
+    return _renumbered_doors(plan), joined
+
+
+def _renumbered_doors(plan: FloorPlan) -> FloorPlan:
+    """Door ids 0, 1, … again after doors were merged (items and graph follow)."""
+    new = {d.id: k for k, d in enumerate(plan.doors)}
+    if all(k == v for k, v in new.items()):
+        return plan
+    items = []
+    for i in plan.furniture:
+        if i.door is not None and i.door in new:
+            name = f"door{new[i.door]}" if i.name == f"door{i.door}" else i.name
+            i = replace(i, door=new[i.door], name=name)
+        items.append(i)
+    graph = plan.room_graph.copy() if plan.room_graph is not None else None
+    for _, _, data in graph.edges(data=True) if graph is not None else ():
+        if data.get("door") in new:
+            data["door"] = new[data["door"]]
+    return plan.with_changes(doors=tuple(replace(d, id=new[d.id]) for d in plan.doors),
+                             furniture=tuple(items), room_graph=graph)
+
+
+def _new_front_door(plan: FloorPlan, party: dict[int, LineString]) -> FloorPlan:
+    """The storey's front door, when every wing had its own in a party wall: an open
+    doorway in the longest stretch of a circulation room's outer wall (not a party wall)
+    that no window, door or furniture item takes."""
+    from cga.operations.roomtyping.doors import door_spans, free_intervals, make_door
+
+    width = plan.settings.door_width
+    spans = door_spans(plan)
+    taken = shapely.union_all([i.footprint() for i in plan.furniture if not i.is_detail])
+    best = None
+    for wall in plan.walls:
+        if not wall.outer or wall.id in party or not plan.room(wall.rooms[0]).circulation:
+            continue
+        for lo, hi in free_intervals(wall, spans[wall.id]):
+            centre = (lo + hi) / 2
+            approach = LineString([wall.point_at(centre - width / 2), wall.point_at(centre + width / 2)])
+            approach = approach.buffer(1.0, cap_style="flat", single_sided=False)
+            if hi - lo >= width and not approach.intersects(taken) \
+                    and (best is None or hi - lo > best[0]):
+                best = (hi - lo, wall, centre, wall.rooms[0])
+    if best is None:
+        return plan.with_changes(diagnostics=plan.diagnostics + (Diagnostic(
+            "warning", "make_floor", "the wings' front doors were all in the walls between "
+            "them, and no hall or corridor has a free outer wall for another: the floor has "
+            "no front door", floor=plan.index),))
+    _, wall, centre, room = best
+    door = make_door(len(plan.doors), wall, centre, (room, OUTSIDE), plan, reason="front")
+    door = replace(door, state="open", angle=DOOR_OPEN_ANGLE, leaf=False)
+    walls = tuple(w.with_opening(Opening("door", centre, width, plan.settings.door_height))
+                  if w.id == wall.id else w for w in plan.walls)
+    graph = plan.room_graph.copy() if plan.room_graph is not None else None
+    if graph is not None:
+        graph.add_edge(room, OUTSIDE, door=door.id, wall=wall.id, reason="front")
+    x, z = door.position
+    note = Diagnostic("info", "make_floor", f"the wings' front doors were in the walls between "
+                      f"them; the floor's front door is door {door.id}, an open doorway at "
+                      f"({x:.2f}, {z:.2f}) into {plan.room(room).label}", floor=plan.index)
+    return plan.with_changes(walls=walls, doors=plan.doors + (door,), room_graph=graph,
+                             entry=room, diagnostics=plan.diagnostics + (note,))
+
+
+def _doorway_spot(plan: FloorPlan, shared: LineString, width: float,
+                  thickness: float) -> tuple[Point, list[FurnitureItem]] | None:
+    """Where a doorway ``width`` wide goes on ``shared``, clear of the walls' ends: the
+    spot nearest the middle with no furniture within a metre on either side (the items
+    were placed before the wings were joined), else the middle and the items in its way;
+    None when the stretch is too short."""
+    items = [i for i in plan.furniture if not i.is_detail]
+    margin = width / 2 + thickness + 0.1
+    lo, hi = margin, shared.length - margin
+    if hi < lo:
+        return None
+
+    def in_way(t: float) -> list[FurnitureItem]:
+        a, b = shared.interpolate(t - width / 2), shared.interpolate(t + width / 2)
+        approach = LineString([a, b]).buffer(1.0, cap_style="flat")
+        return [i for i in items if i.footprint().intersects(approach)]
+
+    middle = shared.length / 2
+    spots = sorted((lo + k * 0.05 for k in range(int((hi - lo) / 0.05) + 1)),
+                   key=lambda t: abs(t - middle))
+    for t in spots:
+        if not in_way(t):
+            return shared.interpolate(t), []
+    t = min(max(middle, lo), hi)
+    return shared.interpolate(t), in_way(t)
+
+
+def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict[int, int],
+                      count: int, joined: set[tuple[int, int]]) -> FloorPlan:
+    """Doorways through the party walls between facing circulation rooms, one per pair
+    of wings not yet joined (the longest shared stretch), so the wings are one building
+    inside."""
+    width = plan.settings.door_width
+    candidates = []
+    for a in party:
+        wall_a = plan.wall(a)
+        room_a = plan.room(wall_a.rooms[0])
+        for b in party:
+            wall_b = plan.wall(b)
+            room_b = plan.room(wall_b.rooms[0])
+            if b <= a or owner[room_a.id] == owner[room_b.id]:
+                continue
+            if not (room_a.circulation and room_b.circulation):
+                continue
+            shared = wall_a.segment().intersection(wall_b.segment().buffer(_TOUCH))
+            if shared.length >= width + 2 * max(wall_a.thickness, wall_b.thickness):
+                candidates.append((shared.length, a, b, shared))
+    doors = list(plan.doors)
+    furniture = list(plan.furniture)
+    notes: list[Diagnostic] = []
+    walls = {w.id: w for w in plan.walls}
+    graph = plan.room_graph.copy() if plan.room_graph is not None else None
+    for _, a, b, shared in sorted(candidates, key=lambda c: (-c[0], c[1], c[2])):
+        wall_a, wall_b = walls[a], walls[b]
+        first, second = sorted((owner[wall_a.rooms[0]], owner[wall_b.rooms[0]]))
+        pair = (first, second)
+        if pair in joined:
+            continue
+        spot = _doorway_spot(plan, shared, width, max(wall_a.thickness, wall_b.thickness))
+        if spot is None:
+            continue
+        centre, in_way = spot
+        joined.add(pair)
+        if in_way:
+            gone = {(i.room, i.name) for i in in_way}
+            gone |= {(i.room, i.name) for i in plan.furniture if (i.room, i.parent) in gone}
+            furniture = [i for i in furniture if (i.room, i.name) not in gone]
+            notes.append(Diagnostic(
+                "warning", "make_floor",
+                f"left out {', '.join(sorted(name for _, name in gone))}: in the way of the "
+                f"doorway joining the wings at ({centre.x:.2f}, {centre.y:.2f})",
+                floor=plan.index))
+        for wall in (wall_a, wall_b):
+            along = wall.segment().project(centre)
+            walls[wall.id] = wall.with_opening(Opening("door", along, width,
+                                                       plan.settings.door_height))
+        door = _doorway(Door(id=len(doors), wall=a, rooms=(wall_a.rooms[0], wall_b.rooms[0]),
+                             position=(centre.x, centre.y), width=width,
+                             height=plan.settings.door_height, swing_room=wall_a.rooms[0]),
+                        (wall_a.rooms[0], wall_b.rooms[0]))
+        doors.append(door)
+        if graph is not None:
+            graph.add_edge(door.rooms[0], door.rooms[1], door=door.id, wall=a,
+                           reason="wings")
+    diagnostics = plan.diagnostics + tuple(notes)
+    if count > 1 and len(joined) < count - 1:
+        diagnostics += (Diagnostic(
+            "info", "make_floor",
+            f"{count} wings on floor {plan.index}, joined inside by {len(joined)} doorway(s): "
+            f"a wing without a hall or corridor facing another's across their common wall "
+            f"is reached through its own front door", floor=plan.index),)
+    return plan.with_changes(walls=tuple(walls[w.id] for w in plan.walls), doors=tuple(doors),
+                             furniture=tuple(furniture), room_graph=graph,
+                             diagnostics=diagnostics)

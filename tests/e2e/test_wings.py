@@ -1,0 +1,85 @@
+"""End to end: a storey split into wings, make_floor on each (issue 20).
+
+Seen first: ``split("x")`` into two wings and ``make_floor`` on each failed with "two
+scene nodes are both named 'floor0/slab'". Now the wings of a storey are one plan: node
+names are unique, the footprint is the union, no window looks into the neighbouring
+wing, the wings are joined inside (the room graph is connected without the outside),
+the stair still joins the storeys and both checks pass. Checked with shapely and
+networkx on the built scene.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import networkx as nx
+import pytest
+from shapely.geometry import LineString, Point
+
+from cga.cli import main
+from cga.model import OUTSIDE
+from cga.pipeline import build
+
+WINGS = """\
+units = 1;
+Lot: rectangle(24, 10)
+Rules:
+Lot --> extrude(6) Body
+Body --> repeated_split("Y", 3){Storey}
+Storey --> split("x"){ ~1 : Wing | ~1 : Wing }
+Wing --> make_floor(5, 0.2, 2>1.2>1.2, 0.9, 2.1, corridor = "spine", corridor_width = 1.6, corridor_position = 0.42, min_room_width = 2, min_room_area = 4) Floor
+Floor --> case floor == 0 : type_rooms("house_types.csv") Typed
+        | else : type_rooms("house_upper_types.csv") Typed
+Typed --> add_furniture("furniture_house.csv", 0.2>1.2>1.2, 0.9, 2.1, 10, 20) Furnished
+"""
+PARTY = LineString([(12, 0), (12, 10)])
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    grammar = tmp_path_factory.mktemp("wings") / "wings.grammar"
+    grammar.write_text(WINGS, encoding="utf-8")
+    return build(grammar, seed=0, formats=(), quiet=True)
+
+
+def test_node_names_are_unique(scene):
+    counts = Counter(n.path for n in scene.nodes)
+    assert not [path for path, k in counts.items() if k > 1]
+
+
+def test_one_plan_per_storey_over_both_wings(scene):
+    assert [p.index for p in scene.floors] == [0, 1]
+    for plan in scene.floors:
+        assert plan.footprint.area == pytest.approx(240.0)
+        assert sum(r.polygon.area for r in plan.rooms) == pytest.approx(240.0)
+        assert len({r.id for r in plan.rooms}) == len(plan.rooms)
+        assert all(Point(w.position).distance(PARTY) > 0.05 for w in plan.windows)
+    assert len(scene.floors[0].stairs) == 1  # the stair still joins the storeys
+
+
+def test_the_wings_are_one_building_inside(scene):
+    for plan in scene.floors:
+        graph = nx.Graph()
+        graph.add_nodes_from(r.id for r in plan.rooms)
+        graph.add_edges_from(d.rooms for d in plan.doors if OUTSIDE not in d.rooms)
+        assert nx.is_connected(graph), plan.index
+        assert any(d.rooms[0] != OUTSIDE and d.rooms[1] != OUTSIDE
+                   and Point(d.position).distance(PARTY) < 1e-6 for d in plan.doors)
+    assert scene.floors[0].front_door() is not None
+
+
+def test_both_checks_pass(scene):
+    assert scene.checks["physics"].passed, scene.checks["physics"].summary()
+    assert scene.checks["navigability"].passed, scene.checks["navigability"].summary()
+
+
+def test_wings_that_do_not_touch_are_refused(tmp_path, capsys):
+    grammar = tmp_path / "apart.grammar"
+    grammar.write_text('Lot: rectangle(26, 10)\nRules:\nLot --> extrude(3) Storey\n'
+                       'Storey --> split("x"){ ~1 : Wing | 2 : Yard | ~1 : Wing }\n'
+                       'Wing --> make_floor(3, 0.2, 2>1.2>1.2, 0.9, 2.1) Floor\n',
+                       encoding="utf-8")
+    assert main(["build", str(grammar), "--no-physics", "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "do not touch" in err and "Traceback" not in err
+    assert not (tmp_path / "out").exists()
