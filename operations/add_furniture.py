@@ -66,10 +66,10 @@ class AddFurniture(Operation):
         (:mod:`cga.operations.furniture.passage`).
     disorder (keyword):
         Noise in [0, 1] (default 0: tidy) turning and shifting the movable items
-        (the chairs, or the rows marked ``isMovable``; a row's own ``disorder`` wins) off
-        their tidy pose, each
-        disturbed pose checked like any other (:mod:`cga.operations.furniture.disorder`;
-        the TFG's chair noise, 0.4 in its robot runs).
+        (the chairs, or the rows marked ``isMovable``; a row's own ``disorder`` wins)
+        off their tidy pose, each disturbed pose checked like any other
+        (:mod:`cga.operations.furniture.disorder`; the TFG's chair noise, 0.4 in its
+        robot runs).
 
     Every item that cannot be placed is left out with a warning naming the item, the
     room and the reason; the warnings travel on the floor plan's ``diagnostics``.

@@ -112,6 +112,15 @@ class Run:
     from_end: bool = False
     overhang: bool = False
 
+    @property
+    def descending(self) -> bool:
+        """Whether filling goes from the high to the low coordinate along the wall."""
+        axis = self.edge.axis
+        assert axis is not None
+        first, last = ((self.edge.end, self.edge.start) if self.from_end
+                       else (self.edge.start, self.edge.end))
+        return first[axis] > last[axis]
+
 
 @dataclass(frozen=True)
 class Strategy:
@@ -281,7 +290,7 @@ class _Filler:
                 self.desk, rotation, axis, fixed, lo, hi,
                 self.placer.related.get(self.desk.name, frozenset()))
             values = sorted({v for a, b in intervals for v in (a, (a + b) / 2, b)} - tried,
-                            reverse=run.from_end)
+                            reverse=run.descending)
             if not values:
                 return
             before = len(self.layout.placed)
@@ -289,7 +298,7 @@ class _Filler:
                 tried.add(value)
                 yield _at(axis, value, fixed, rotation)
                 if len(self.layout.placed) > before:  # seated: go on past it
-                    lo, hi = (lo, value) if run.from_end else (value, hi)
+                    lo, hi = (lo, value) if run.descending else (value, hi)
                     break
             else:
                 return
@@ -309,7 +318,7 @@ class _Filler:
         lo, hi = edge.span[0] + reach, edge.span[1] - reach
         count = int(math.floor((hi - lo) / (2 * reach) + _TOLERANCE)) + 1 if hi >= lo else 0
         centres = [lo + 2 * reach * k for k in range(count)]
-        for centre in (reversed(centres) if run.from_end else centres):
+        for centre in (reversed(centres) if run.descending else centres):
             for level in range(MAX_COPIES):
                 fixed = fixed0 + pitch * level
                 before = len(self.layout.placed)

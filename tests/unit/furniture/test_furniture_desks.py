@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 from shapely.geometry import Polygon
+from shapely.geometry.polygon import orient
 
 from cga.authoring import furnish_floor
 from cga.errors import RuleTableError
@@ -193,6 +194,10 @@ def test_the_walks_start_at_the_door_wall(office):
               for r in by_name["left-right strict"].runs}
     assert starts == {"left": (0.2, 0.2), "right": (3.8, 0.2), "top": (0.2, 2.8),
                       "bottom": (0.2, 0.2)}
+    assert not any(r.descending for r in by_name["left-right strict"].runs)  # low x, z first
+    # clockwise, the walk comes up the left wall: the top wall is filled from x = 0.2
+    (top,) = [r for r in by_name["clockwise"].runs if side(r.edge) == "top"]
+    assert top.edge.end == (0.2, 2.8) and top.from_end and not top.descending
     assert not any(r.overhang for r in by_name["left-right strict"].runs)
     assert all(r.overhang for r in by_name["left-right relaxed"].runs)
 
@@ -205,3 +210,49 @@ def test_relaxed_walls_include_the_short_ones(office):
     assert {side(r.edge) for r in by_name["left-right relaxed"].runs} == {
         "bottom", "top", "left", "right"}
     assert len(desks.brute_force_strategies(edges, None, 1.2)) == 3 ** 2 - 1
+
+
+def pilaster_office() -> FloorPlan:
+    """A 4.0 x 1.15 m office whose long walls have three pilasters each (0.3 wide, 0.15
+    deep, at x 1.0, 2.2 and 3.1): no straight piece of wall is as long as a desk, and
+    the side walls (1.15 m) are shorter too. A bare opening in the left wall keeps
+    x < 0.9 free."""
+    bottom = [(0.0, 0.0)]
+    for x0, x1 in ((1.0, 1.3), (2.2, 2.5), (3.1, 3.4)):
+        bottom += [(x0, 0.0), (x0, 0.15), (x1, 0.15), (x1, 0.0)]
+    bottom.append((4.0, 0.0))
+    top = [(x, 1.15 - z) for x, z in reversed(bottom)]
+    interior = Polygon(bottom + top)
+    polygon = orient(interior.buffer(0.2, join_style="mitre"))  # walls counter-clockwise
+    ring = list(polygon.exterior.coords)[:-1]
+    walls = tuple(Wall(i, ring[i], ring[(i + 1) % len(ring)], True, (0, OUTSIDE), 0.2)
+                  for i in range(len(ring)))
+    left = next(w for w in walls if w.start[0] == w.end[0] == -0.2)
+    door = Door(0, left.id, (0, OUTSIDE), left.point_at(left.length / 2), 0.9, 2.1, 0,
+                "start", True, "front", leaf=False)
+    return FloorPlan(0, 0.0, 3.0, polygon, FloorSettings(wall_thickness=0.2),
+                     (Room(0, polygon, interior, "Office"),), walls, doors=(door,))
+
+
+def test_the_relaxed_layout_hangs_desks_over_short_walls(desk_library, tmp_path, monkeypatch):
+    """Strictly, no wall takes a desk; relaxed, a desk backs onto a pilaster and hangs
+    past both its ends (not by the door: its keep-out): two desks, side by side on the
+    pilasters at x 2.2..2.5 and 3.1..3.4 of one long wall (a desk on the other wall
+    would stand in their clearance)."""
+    table = tmp_path / "shallow.csv"
+    table.write_text(DESK_ONLY.replace("0.6;perimeter", "0.25;perimeter"), encoding="utf-8")
+    # 1.15 m deep: a robot's passage past the desks is not the point here
+    furnished = furnish_floor(pilaster_office(), table, seed=0, passage_width=0,
+                              library=desk_library)
+    assert furniture_violations(furnished, table, passage_width=0) == []
+    placed = [i.footprint().bounds for i in furnished.furniture if i.model == "desk"]
+    assert len(placed) == 2
+    for minx, minz, maxx, maxz in placed:
+        assert minz == pytest.approx(0.15) or maxz == pytest.approx(1.0)  # on a pilaster
+    real = desks.perimeter_strategies
+    monkeypatch.setattr(desks, "perimeter_strategies",
+                        lambda *a: [s for s in real(*a) if s.name != "left-right relaxed"])
+    strict = furnish_floor(pilaster_office(), table, seed=0, passage_width=0,
+                           library=desk_library)
+    assert not [i for i in strict.furniture if i.model == "desk"]
+    assert any("no wall long enough for desk" in d.message for d in strict.diagnostics)
