@@ -41,7 +41,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .batch_engine import Engine, make_engine, max_jobs
-from .batch_shard import LOCK, MANIFEST, Shard, manifest_name, write_ranges
+from .batch_shard import LOCK, MANIFEST, MERGED, Shard, manifest_name, write_ranges
 from .difficulty.metrics import mean_metrics
 from .errors import CGAError, ExportError, UsageError
 from .provenance import RecordedInputs, provenance, recording
@@ -551,6 +551,8 @@ def _run_locked(run: _Run, seeds: range,
     _remove_staging(run)
     records = _check_inputs(run, read_manifest(run.out, run.shard))
     _rewrite_manifest(run.manifest, records)
+    if run.shard is None:  # this batch's lines are in manifest.jsonl now: no merge replaces it
+        (run.out / MERGED).unlink(missing_ok=True)
     built_before = {seed for seed, r in records.items() if r.error is None and seed in seeds}
     todo = (seed for seed in seeds if seed not in built_before)
     finished = len(built_before)

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .batch_shard import MANIFEST, Shard, read_ranges, shard_of_manifest
+from .batch_shard import MANIFEST, MERGED, Shard, read_ranges, shard_of_manifest
 from .errors import UsageError
 from .provenance import RecordedInputs
 
@@ -213,12 +213,8 @@ def merge_manifests(folders: Sequence[str | Path], out: str | Path | None = None
                        tuple(source.path for source in sources))
 
 
-_MARK = ".cga-merged"
-"""A file beside a merged manifest: a later merge may replace that manifest."""
-
-
 def _made_by_merge(manifest: Path) -> bool:
-    return (manifest.parent / _MARK).is_file()
+    return (manifest.parent / MERGED).is_file()
 
 
 def _write(manifest: Path, sources: list[_Source]) -> None:
@@ -245,7 +241,7 @@ def _write(manifest: Path, sources: list[_Source]) -> None:
             merged.flush()
             os.fsync(merged.fileno())
         os.chmod(tmp, 0o644)
-        (manifest.parent / _MARK).write_text("manifest.jsonl was written by cga batch merge\n")
+        (manifest.parent / MERGED).write_text("manifest.jsonl was written by cga batch merge\n")
         os.replace(tmp, manifest)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

@@ -10,8 +10,8 @@ the batch ends. A caller that has already called :func:`ray.init` keeps its conn
   task is about a millisecond (measured: 1,000 empty tasks in 0.7 s on 2 cores), so
   chunks of seeds would save nothing and would delay the manifest and widen what a
   lost worker takes with it.
-* **Streaming.** At most twice the cluster's CPUs of tasks are submitted at once; the
-  next seed is submitted as a build finishes (:func:`ray.wait`), so the seed range is
+* **Streaming.** At most twice the cluster's CPUs of tasks are submitted at once (with
+  ``--address``, ``--jobs`` sets the number instead); the next seed is submitted as a build finishes (:func:`ray.wait`), so the seed range is
   never listed (``-n 1e12`` starts at once) and each result reaches the manifest as
   soon as it exists.
 * **Failures.** A build's own errors are results (the seed's failure record). A task
@@ -121,9 +121,9 @@ class RayEngine:
         return True
 
     def _in_flight(self, ray: Any) -> int:
-        cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
         if self.address is not None and self.jobs is not None:
-            cpus = min(cpus, self.jobs)
+            return self.jobs  # the user's share of a shared cluster
+        cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
         return cpus if self.time_limit is not None else 2 * cpus
 
     def _reason(self, error: BaseException, over_time: bool, seconds: float) -> str:

@@ -20,11 +20,14 @@ from pathlib import Path
 
 from .errors import UsageError
 
-__all__ = ["MANIFEST", "LOCK", "Shard", "parse_shard", "manifest_name", "shard_of_manifest",
+__all__ = ["MANIFEST", "LOCK", "MERGED", "Shard", "parse_shard", "manifest_name", "shard_of_manifest",
            "read_ranges", "write_ranges"]
 
 MANIFEST = "manifest.jsonl"
 LOCK = ".cga-batch.lock"
+MERGED = ".cga-merged"
+"""Beside a ``manifest.jsonl`` that ``cga batch merge`` wrote (and may write again); a
+batch that then writes that manifest itself removes it."""
 _SHARD_MANIFEST = re.compile(r"manifest\.shard-(\d+)-of-(\d+)\.jsonl")
 
 

@@ -71,12 +71,17 @@ def check_mode(mode: Any, what: str = "--materials") -> MaterialMode:
     return mode
 
 
-@lru_cache(maxsize=8)
 def _shipped_tables() -> tuple[MaterialLibrary, LightRules]:
+    """The shipped tables, found on every call (a batch records each build's inputs,
+    cga.provenance) and parsed once per process."""
     from cga.resources import resolve_resource
 
-    return (load_material_library(resolve_resource(MATERIAL_TABLE)),
-            load_light_rules(resolve_resource(LIGHT_TABLE)))
+    return _load_tables(resolve_resource(MATERIAL_TABLE), resolve_resource(LIGHT_TABLE))
+
+
+@lru_cache(maxsize=8)
+def _load_tables(materials: Path, lights: Path) -> tuple[MaterialLibrary, LightRules]:
+    return load_material_library(materials), load_light_rules(lights)
 
 
 def shipped_appearance(mode: MaterialMode = "neutral") -> Appearance:

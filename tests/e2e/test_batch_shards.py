@@ -79,7 +79,10 @@ def test_shards_merged_equal_one_run(block, tmp_path, capsys):
     for seed in (0, 13, 29):
         assert _tree(shared / seed_folder(seed)) == _tree(whole / seed_folder(seed))
     # the merged folder resumes as an ordinary batch: nothing left to build
-    assert run_batch(block, count=30, out_dir=shared, build_options=NO_PHYSICS).skipped == 30
+    assert run_batch(block, count=32, out_dir=shared, build_options=NO_PHYSICS).skipped == 30
+    # a merge would now drop seeds 30 and 31, which only manifest.jsonl lists
+    err = _cli_error(capsys, ["batch", "merge", str(shared)])
+    assert "manifest.jsonl exists and was not written by cga batch merge" in err
 
 
 def test_merge_of_shards_in_separate_folders_points_at_their_houses(block, tmp_path):
@@ -196,11 +199,14 @@ def test_every_line_records_the_inputs_the_build_read(tmp_path):
         inputs = line["provenance"]
         assert inputs["grammar"] == hashlib.sha256(ONE_ROOM.encode()).hexdigest()[:16]
         assert inputs["files"]["types.csv"] == hashlib.sha256(TYPES.encode()).hexdigest()[:16]
-        assert "cga.rules/furniture_house.csv" in inputs["files"]
+        # every build notes them, though a process parses each table once
+        assert {"cga.rules/furniture_house.csv", "cga.rules/materials.csv",
+                "cga.rules/lights.csv"} <= set(inputs["files"])
         assert any(name.startswith("cga.furniture_models/") and name.endswith(".obj")
                    for name in inputs["files"])
         assert inputs["options"] == {"allow_paths": [], "formats": ["glb", "json"],
-                                     "lot": None, "max_depth": 64, "overrides": {},
+                                     "lot": None, "materials": None, "max_depth": 64,
+                                     "overrides": {},
                                      "physics": False, "robot_radius": 0.25, "strict": False,
                                      "units": None}
         assert inputs["version"]
