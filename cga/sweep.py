@@ -9,6 +9,7 @@ the batch report and the mean of every difficulty metric over its built seeds
 
 from __future__ import annotations
 
+import contextlib
 import json
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -71,7 +72,8 @@ def run_sweep(grammar: str | Path, *, name: str, values: Sequence[float], count:
         Called with each value before its batch starts.
     **batch_options:
         Passed to :func:`cga.batch.run_batch` (``jobs``, ``seed_start``, ``time_limit``,
-        ``on_progress``).
+        ``on_progress``, ``engine``, ...); with ``engine="ray"`` every value's batch runs
+        on one cluster.
 
     Raises
     ------
@@ -87,13 +89,20 @@ def run_sweep(grammar: str | Path, *, name: str, values: Sequence[float], count:
         raise UsageError("--sweep needs at least one value")
     out = Path(out_dir)
     reports = []
-    for value in values:
-        if on_value:
-            on_value(value)
-        text = value_text(value)
-        reports.append(run_batch(grammar, count=count, out_dir=out / f"{name}={text}",
-                                 build_options={**options, "overrides": {**overrides, name: text}},
-                                 **batch_options))
+    cluster: contextlib.AbstractContextManager[None] = contextlib.nullcontext()
+    if batch_options.get("engine") == "ray":  # one cluster for every value
+        from .batch_ray import ray_cluster
+
+        cluster = ray_cluster(batch_options.get("address"), batch_options.get("jobs"))
+    with cluster:
+        for value in values:
+            if on_value:
+                on_value(value)
+            text = value_text(value)
+            reports.append(run_batch(grammar, count=count, out_dir=out / f"{name}={text}",
+                                     build_options={**options,
+                                                    "overrides": {**overrides, name: text}},
+                                     **batch_options))
     report = SweepReport(name, tuple(values), tuple(reports))
     atomic_write(out / SWEEP_REPORT, json.dumps(report.to_dict(), indent=2, sort_keys=True) + "\n")
     return report

@@ -285,3 +285,31 @@ def test_the_ray_engine_without_ray_says_how_to_install_it(tmp_path, monkeypatch
                  "--engine", "ray", "--quiet"]) == 2
     err = capsys.readouterr().err
     assert 'the Ray engine needs Ray: pip install "cga[ray]"' in err and "Traceback" not in err
+
+
+def test_a_sweep_on_ray_starts_one_cluster_for_every_value(tmp_path, monkeypatch):
+    """Starting a local Ray cluster takes seconds; a sweep of eleven values paid it eleven
+    times. A stand-in for Ray counts the starts; the batches record what they saw."""
+    import sys
+    import types
+
+    from cga import sweep
+    from cga.batch import BatchReport
+
+    state = {"running": False, "starts": 0, "stops": 0}
+    fake = types.ModuleType("ray")
+    fake.is_initialized = lambda: state["running"]
+    fake.init = lambda **options: state.update(running=True, starts=state["starts"] + 1)
+    fake.shutdown = lambda: state.update(running=False, stops=state["stops"] + 1)
+    monkeypatch.setitem(sys.modules, "ray", fake)
+    seen = []
+
+    def batch(grammar, **options):
+        seen.append((options["engine"], state["running"]))
+        return BatchReport(records=(), wall_seconds=0.0, built_now=0)
+
+    monkeypatch.setattr(sweep, "run_batch", batch)
+    sweep.run_sweep(MASSING, name="difficulty", values=[0, 1, 2], count=1,
+                    out_dir=tmp_path, engine="ray")
+    assert seen == [("ray", True)] * 3
+    assert (state["starts"], state["stops"], state["running"]) == (1, 1, False)
