@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
@@ -123,6 +123,9 @@ class OccupancyGrid:
     floor: int
     band: tuple[float, float]
     obstacles: tuple[Obstacle, ...] = ()
+    cells: dict[str, list[_Patch]] = field(default_factory=dict, compare=False, repr=False)
+    """The cells each obstacle (by path) was painted into, kept so that
+    :meth:`occupied_by` need not rasterise its shadow again."""
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -165,7 +168,11 @@ class OccupancyGrid:
         mask = np.zeros(self.shape, dtype=bool)
         for obstacle in self.obstacles:
             if obstacle.path in wanted:
-                _paint(mask, obstacle.footprint, self.x_min, self.z_min, self.resolution)
+                patches = self.cells.get(obstacle.path)
+                if patches is None:
+                    patches = _patches(mask.shape, obstacle.footprint, self.x_min,
+                                       self.z_min, self.resolution)
+                _apply(mask, patches)
         return mask
 
 
@@ -193,8 +200,7 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     if hi[1] <= y0 or lo[1] >= y1:
         return Polygon()
     if node.parts and node.convex_parts:
-        shadows = [_convex_shadow(part, y0, y1) for part in node.parts if len(part.faces)]
-        return shapely.union_all([s for s in shadows if not s.is_empty])
+        return _convex_shadows([p for p in node.parts if len(p.faces)], y0, y1)
     solid = as_manifold(node.mesh)
     if solid is None:
         return _sheet_footprint(node.mesh, y0, y1)
@@ -210,8 +216,10 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     return polygons[0] if len(polygons) == 1 else shapely.MultiPolygon(polygons)
 
 
-def _convex_shadow(part: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:
-    """The shadow of the slice of a convex part between heights ``y0`` and ``y1``."""
+def _band_points(part: trimesh.Trimesh, y0: float, y1: float) -> np.ndarray:
+    """The plan points whose hull is the shadow of the slice of a convex part between
+    heights ``y0`` and ``y1``: its vertices in the band and its edges' crossings with
+    the two planes."""
     vertices = np.asarray(part.vertices, dtype=float)
     y = vertices[:, 1]
     points = [vertices[(y >= y0) & (y <= y1)][:, [0, 2]]]
@@ -221,11 +229,21 @@ def _convex_shadow(part: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:
         crossing = (a[:, 1] - h) * (b[:, 1] - h) < 0
         t = (h - a[crossing, 1]) / (b[crossing, 1] - a[crossing, 1])
         points.append((a[crossing] + t[:, None] * (b[crossing] - a[crossing]))[:, [0, 2]])
-    cloud = np.concatenate(points)
-    if len(cloud) == 0:
-        return Polygon()
-    hull = shapely.MultiPoint(cloud).convex_hull
-    return hull if isinstance(hull, Polygon) else hull.buffer(_SHEET)
+    return np.concatenate(points)
+
+
+def _convex_shadows(parts: Sequence[trimesh.Trimesh], y0: float, y1: float) -> BaseGeometry:
+    """The union of the shadows of the slices of convex parts between heights ``y0`` and
+    ``y1``: each the hull of :func:`_band_points` (all hulls in one vectorised call), a
+    degenerate hull (a part seen edge-on) thickened by :data:`_SHEET`."""
+    clouds = [c for c in (_band_points(part, y0, y1) for part in parts) if len(c)]
+    if not clouds:
+        return shapely.union_all([])
+    owners = np.repeat(np.arange(len(clouds)), [len(c) for c in clouds])
+    hulls = shapely.convex_hull(shapely.multipoints(np.concatenate(clouds), indices=owners))
+    flat = shapely.get_type_id(hulls) != shapely.GeometryType.POLYGON
+    hulls[flat] = shapely.buffer(hulls[flat], _SHEET)
+    return shapely.union_all(hulls)
 
 
 def _sheet_footprint(mesh: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:
@@ -333,6 +351,13 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
     _paint(free_mask, plan.footprint, x_min, z_min, resolution)
     extent = shapely.box(x_min, z_min, x_min + cols * resolution, z_min + rows * resolution)
     obstacles = []
+    cells: dict[str, list[_Patch]] = {}
+
+    def paint(obstacle: Obstacle) -> None:
+        patches = _patches(occupied.shape, obstacle.footprint, x_min, z_min, resolution)
+        cells.setdefault(obstacle.path, []).extend(patches)
+        _apply(occupied, patches)
+
     for node in obstacle_nodes(nodes, include_doors=include_doors):
         if node.kind == "furniture" and node.door is None and not include_furniture:
             continue
@@ -344,14 +369,14 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
         obstacles.append(Obstacle(node.path, node.kind, footprint,
                                   node.item.room if node.item is not None else None,
                                   node.door.door if node.door is not None else None))
-        _paint(occupied, footprint, x_min, z_min, resolution)
+        paint(obstacles[-1])
     # a floor read back from files has its stairs as meshes among the nodes already
     for obstacle in stair_obstacles(plan) if isinstance(plan, FloorPlan) else ():
         obstacles.append(obstacle)
-        _paint(occupied, obstacle.footprint, x_min, z_min, resolution)
+        paint(obstacle)
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
                          resolution=resolution, floor=plan.index, band=(y0, y1),
-                         obstacles=tuple(obstacles))
+                         obstacles=tuple(obstacles), cells=cells)
 
 
 def stair_obstacles(plan: FloorPlan) -> list[Obstacle]:
@@ -379,10 +404,27 @@ def _meets(node: SceneNode, y0: float, y1: float, extent: BaseGeometry) -> bool:
     return bool(extent.intersects(shapely.box(lo[0], lo[2], hi[0], hi[2])))
 
 
+_Patch = tuple[int, int, int, int, np.ndarray]
+"""``(r0, r1, c0, c1, cells)``: the cells ``[r0:r1, c0:c1]`` of a grid a shape covers."""
+
+
 def _paint(mask: np.ndarray, geometry: BaseGeometry, x_min: float, z_min: float,
            resolution: float) -> None:
     """Set the cells of ``mask`` that ``geometry`` (plan x, z) covers or crosses."""
-    rows, cols = mask.shape
+    _apply(mask, _patches(mask.shape, geometry, x_min, z_min, resolution))
+
+
+def _apply(mask: np.ndarray, patches: Sequence[_Patch]) -> None:
+    for r0, r1, c0, c1, cells in patches:
+        mask[r0:r1, c0:c1] |= cells
+
+
+def _patches(shape: tuple[int, ...], geometry: BaseGeometry, x_min: float, z_min: float,
+             resolution: float) -> list[_Patch]:
+    """The cells of a grid of ``shape`` that ``geometry`` (plan x, z) covers or crosses,
+    one patch per polygon (its bounding box of cells), drawn with Pillow."""
+    rows, cols = shape[0], shape[1]
+    out = []
     for polygon in _polygons(geometry):
         bx0, bz0, bx1, bz1 = polygon.bounds
         c0 = max(math.floor((bx0 - x_min) / resolution), 0)
@@ -403,7 +445,8 @@ def _paint(mask: np.ndarray, geometry: BaseGeometry, x_min: float, z_min: float,
         draw.polygon(pixels(polygon.exterior.coords), fill=1, outline=1)
         for interior in polygon.interiors:
             draw.polygon(pixels(interior.coords), fill=0, outline=1)
-        mask[r0:r1, c0:c1] |= np.asarray(image, dtype=bool)
+        out.append((r0, r1, c0, c1, np.asarray(image, dtype=bool)))
+    return out
 
 
 def _polygons(geometry: BaseGeometry) -> list[Polygon]:
