@@ -24,8 +24,12 @@ import shutil
 import tempfile
 from collections.abc import Iterable, Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .errors import ExportError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .output_record import OutputFormats
 
 try:
     import fcntl
@@ -182,7 +186,8 @@ class OutputConflictError(ExportError):
 
 @contextlib.contextmanager
 def atomic_output_dir(target: str | os.PathLike[str], *, owner: str | None = None,
-                      protect: Iterable[str | os.PathLike[str]] = ()) -> Iterator[Path]:
+                      protect: Iterable[str | os.PathLike[str]] = (),
+                      formats: "OutputFormats | None" = None) -> Iterator[Path]:
     """Stage output files in a folder inside ``target``; move them in on success.
 
     Parameters
@@ -197,6 +202,10 @@ def atomic_output_dir(target: str | os.PathLike[str], *, owner: str | None = Non
         does not write again are removed. Without it files are only added or replaced.
     protect:
         Inputs (the grammar, a lot file) that must never be replaced or removed.
+    formats:
+        With ``owner``: the formats this build writes, and the file → format map the
+        caller fills inside the ``with`` block. Recorded files are then removed only
+        when one of the requested formats wrote them; the others stay.
 
     Yields
     ------
@@ -228,11 +237,11 @@ def atomic_output_dir(target: str | os.PathLike[str], *, owner: str | None = Non
         staged = sorted(p for p in staging.rglob("*") if p.is_file())
         _flush(staged)
         with interrupts.deferred():
-            _commit(final, staging, staged, owner, protected)
+            _commit(final, staging, staged, owner, protected, formats)
 
 
 def _commit(final: Path, staging: Path, staged: list[Path], owner: str | None,
-            protect: list[Path]) -> None:
+            protect: list[Path], formats: "OutputFormats | None" = None) -> None:
     """Move staged files into ``final``; with an owner, replace and remove only its files."""
     from .output_record import OutputRecord
 
@@ -246,14 +255,16 @@ def _commit(final: Path, staging: Path, staged: list[Path], owner: str | None,
             raise OutputConflictError(_conflict_message(final, owner, conflicts))
         # list the new files before they move in: a build stopped while moving still
         # owns what it moved (staged files are older than the record)
-        record.save(record.files | set(relatives), staging)
+        record.save(record.files | set(relatives), staging,
+                    {**record.formats, **(formats.files if formats else {})})
     for name, source in zip(relatives, staged):
         destination = final / name
         destination.parent.mkdir(parents=True, exist_ok=True)
         os.replace(source, destination)
     if record is not None:
-        record.remove_unless(relatives, protect)
-        record.save(relatives, staging)
+        kept = record.remove_unless(relatives, protect,
+                                    formats.requested if formats else None)
+        record.save(set(relatives) | kept, staging, record.formats)
 
 
 def _conflict_message(final: Path, owner: str, conflicts: list[str]) -> str:

@@ -149,8 +149,9 @@ def export_scene(scene: Scene, out_dir: str | Path, formats: Sequence[str], *,
     """Write ``formats`` of ``scene.nodes`` into ``out_dir`` all-or-nothing; returns the
     written files.
 
-    Files an earlier build of the same name wrote and this one does not are removed, so
-    the folder describes this build only; no other file is replaced or removed
+    Files an earlier build of the same name wrote in one of ``formats`` and this one
+    does not write again are removed (a stale plan of a floor this build lacks); files
+    of other formats are kept, and no other file is replaced or removed
     (:mod:`cga.output_record`). ``protect`` lists inputs that must survive whatever
     happens (the grammar itself is always protected).
 
@@ -162,14 +163,20 @@ def export_scene(scene: Scene, out_dir: str | Path, formats: Sequence[str], *,
     """
     from .export import EXPORTERS
     from .fsutil import atomic_output_dir
+    from .output_record import OutputFormats
 
     target = Path(out_dir)
     written: list[Path] = []
     try:
         inputs = [*protect, *([scene.source] if scene.source else [])]
-        with atomic_output_dir(target, owner=scene.name, protect=inputs) as staging:
+        kinds = OutputFormats(frozenset(formats))
+        with atomic_output_dir(target, owner=scene.name, protect=inputs,
+                               formats=kinds) as staging:
             for fmt in dict.fromkeys(formats):
-                written.extend(EXPORTERS[fmt](scene, scene.nodes, staging, scene.name))
+                files = EXPORTERS[fmt](scene, scene.nodes, staging, scene.name)
+                kinds.files.update({path.relative_to(staging).as_posix(): fmt
+                                    for path in files})
+                written.extend(files)
     except OSError as error:
         raise ExportError(f"cannot write the output folder {target}: {error.strerror or error}"
                           f"{f' ({error.filename})' if error.filename else ''}") from None

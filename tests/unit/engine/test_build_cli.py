@@ -267,3 +267,27 @@ def test_build_refuses_to_replace_a_file_it_did_not_write(grammar_file, tmp_path
     assert "block.glb already exists" in message and "Traceback" not in message
     assert (out / "block.glb").read_text() == "someone else's model"
     assert sorted(p.name for p in out.iterdir()) == ["block.glb"]
+
+
+def test_api_build_keeps_the_files_of_formats_it_does_not_write(tmp_path):
+    """Issue 20: `cga.build()` (glb only) into the folder of a `cga build` that also
+    wrote plans and the scene JSON deleted them. A build removes stale files only among
+    the formats it writes: a rebuild of the plans still drops a floor's stale plan."""
+    grammar = tmp_path / "flat.grammar"
+    grammar.write_text('Lot: rectangle(9, 7)\nRules:\nLot --> extrude(6) Body\n'
+                       'Body --> repeated_split("y", 3){ Storey }\n'
+                       'Storey --> make_floor(2, 0.2, 1>1.2>1.2, 0.9, 2.1, stair = "none") Floor\n')
+    out = tmp_path / "out"
+    assert main(["build", str(grammar), "--out", str(out), "--no-physics", "--quiet"]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert {"flat.glb", "flat.scene.json", "flat.floor0.svg", "flat.floor1.png"} <= names
+    plans = {n: (out / n).read_bytes() for n in names if ".floor" in n}
+    build(grammar, seed=1, out_dir=out, formats=("glb",), physics=False, quiet=True)
+    assert {p.name for p in out.iterdir()} == names  # plans and JSON are still there
+    assert {n: (out / n).read_bytes() for n in plans} == plans
+    # a build that writes plans again replaces them and drops what it no longer writes
+    grammar.write_text(grammar.read_text().replace('extrude(6)', 'extrude(3)'))
+    build(grammar, out_dir=out, formats=("glb", "plan"), physics=False, quiet=True)
+    left = {p.name for p in out.iterdir()}
+    assert "flat.floor1.svg" not in left and "flat.floor0.svg" in left
+    assert "flat.scene.json" in left
