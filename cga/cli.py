@@ -124,6 +124,8 @@ def _run_build(args: argparse.Namespace) -> int:
 
 def _add_check_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("grammar", metavar="FILE", help="the .grammar file")
+    parser.add_argument("--lot", metavar="LOT",
+                        help="a --lot value to check as cga build would read it")
     _add_allow_path(parser)
     parser.add_argument("--quiet", action="store_true", help="print nothing but errors")
 
@@ -131,7 +133,7 @@ def _add_check_arguments(parser: argparse.ArgumentParser) -> None:
 def _run_check(args: argparse.Namespace) -> int:
     from .validate import check_file
 
-    problems = check_file(args.grammar, allow_paths=args.allow_paths)
+    problems = check_file(args.grammar, allow_paths=args.allow_paths, lot=args.lot)
     for problem in problems:
         print(problem, file=sys.stderr)
     if problems:

@@ -168,8 +168,10 @@ def check_grammar(grammar: ast.Grammar, *, base_dir: str | Path | None = None,
 
 
 def check_file(path: str | Path, *, operations: OperationRegistry | None = None,
-               allow_paths: Sequence[str | Path] = ()) -> list[CGAError]:
+               allow_paths: Sequence[str | Path] = (), lot: str | None = None) -> list[CGAError]:
     """Parse and check a grammar file; source errors come with the file's text attached.
+    ``lot`` is a ``--lot`` value, read as :func:`cga.pipeline.build` reads it (a file
+    only inside the allowed folders and the working directory).
 
     Raises
     ------
@@ -190,4 +192,12 @@ def check_file(path: str | Path, *, operations: OperationRegistry | None = None,
         if isinstance(problem, SourceError) and problem.span is not None \
                 and problem.span.file == str(file):
             problem.with_source(text)
+    if lot is not None:
+        from .lot import parse_lot
+
+        sandbox = Sandbox.for_grammar(file.parent, allow_paths).with_working_directory()
+        try:
+            parse_lot(lot, sandbox=sandbox)
+        except CGAError as error:
+            problems.append(error)
     return problems

@@ -151,3 +151,17 @@ def test_scene_json_counts_the_vhacd_pieces_of_a_user_model(project, monkeypatch
               and n["path"].rsplit("/", 1)[-1].startswith("chair")]
     assert chairs, "the house has dining chairs at seed 0"
     assert all(n["convex_parts"] >= 2 for n in chairs)
+
+
+@pytest.mark.parametrize("lot", ["0x5", "bad.geojson", "missing.geojson"])
+def test_check_reads_the_lot_as_build_does(project, lot, monkeypatch):
+    (project / "bad.geojson").write_text(
+        '{"type": "Polygon", "coordinates": [[[0, 0], [1, 1], [0, 1], [1, 0], [0, 0]]]}',
+        encoding="utf-8")
+    monkeypatch.chdir(project)
+    checked, check_err = cli("check", "house.grammar", "--lot", lot)
+    built, build_err = cli("build", "house.grammar", "--lot", lot, "--no-physics",
+                           "--out", "out")
+    assert checked == built == 2
+    assert _first_line(check_err) == _first_line(build_err)
+    assert cli("check", "house.grammar", "--lot", "14x10") == (0, "")
