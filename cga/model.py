@@ -113,9 +113,9 @@ class Wall:
 
     @property
     def direction(self) -> np.ndarray:
-        return np.array(self._unit())
+        return np.array(self.unit())
 
-    def _unit(self) -> tuple[float, float]:
+    def unit(self) -> tuple[float, float]:
         """The unit vector from ``start`` to ``end``. Walls along an axis (nearly all)
         skip numpy: their length is one coordinate's difference exactly, as
         ``np.linalg.norm`` gives it, so both ways give the same bits."""
@@ -179,7 +179,7 @@ class Wall:
 
     def point_at(self, distance: float) -> tuple[float, float]:
         """The point ``distance`` metres from ``start`` along the segment."""
-        ux, uz = self._unit()
+        ux, uz = self.unit()
         return (float(self.start[0] + ux * distance), float(self.start[1] + uz * distance))
 
     def segment(self) -> LineString:

@@ -162,12 +162,24 @@ def _leaf_frame(wall: Wall, centre: float, width: float, hinge: Literal["start",
     """(pivot, along, normal): the hinge point on the room-side face of the wall, the
     unit vector from the hinge to the other jamb and the unit vector into ``room``
     (``Wall.rooms`` is (left, right) walking from start to end)."""
-    d = wall.direction
-    normal = wall.normal_into(room)
+    pivot, along, normal = _leaf_frame_xy(wall, centre, width, hinge, room)
+    return np.array(pivot), np.array(along), np.array(normal)
+
+
+Vector = tuple[float, float]
+
+
+def _leaf_frame_xy(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
+                   room: int) -> tuple[Vector, Vector, Vector]:
+    """:func:`_leaf_frame` as tuples, computed as ``Wall.normal_into`` and
+    ``Wall.point_at`` do (the same bits, without numpy's cost per call)."""
+    offset = wall.face_offset(room)  # raises ValueError for a room on neither side
+    dx, dz = wall.unit()
+    nx, nz = (-dz, dx) if room == wall.rooms[0] else (dz, -dx)
     jamb = centre - width / 2 if hinge == "start" else centre + width / 2
-    along = d if hinge == "start" else -d
-    pivot = np.asarray(wall.point_at(jamb)) + normal * wall.face_offset(room)
-    return pivot, along, normal
+    along = (dx, dz) if hinge == "start" else (-dx, -dz)
+    px, pz = wall.point_at(jamb)
+    return (px + nx * offset, pz + nz * offset), along, (nx, nz)
 
 
 def _swing_polygon(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
@@ -216,12 +228,12 @@ def _sweep_fits(room: Room, wall: Wall, centre: float, width: float,
                 hinge: Literal["start", "end"]) -> bool:
     """Whether the square the leaf sweeps (the quarter circle's bounding square, a hair
     smaller so the face it starts from counts as inside) lies in the room's free floor."""
-    pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room.id)
+    (px, pz), (ax, az), (nx, nz) = _leaf_frame_xy(wall, centre, width, hinge, room.id)
     eps = 1e-6
-    corner = pivot + (along + normal) * eps
+    cx, cz = px + (ax + nx) * eps, pz + (az + nz) * eps
     reach = width - 2 * eps
-    square = [corner, corner + along * reach, corner + (along + normal) * reach,
-              corner + normal * reach]
+    square = [(cx, cz), (cx + ax * reach, cz + az * reach),
+              (cx + (ax + nx) * reach, cz + (az + nz) * reach), (cx + nx * reach, cz + nz * reach)]
     box = _axis_aligned_box(room.interior)
     if box is None:
         return room.interior.covers(Polygon(square))

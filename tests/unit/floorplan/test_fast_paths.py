@@ -18,7 +18,7 @@ from shapely.geometry.polygon import orient
 from cga.model import Wall
 from cga.operations.floorplan.assemble import box_interiors
 from cga.operations.floorplan.bsp import _best_chord, _candidates, _rectangle_window, _Rules
-from cga.operations.roomtyping.doors import _axis_aligned_box
+from cga.operations.roomtyping.doors import _axis_aligned_box, _leaf_frame_xy
 
 CM = st.integers(0, 3000).map(lambda v: v / 100)
 
@@ -104,3 +104,20 @@ def test_rectangle_window_never_drops_a_valid_cut(w, d, min_width, min_area, min
         for position in _candidates((marks[0] + marks[1]) / 2, marks, rules):
             if _best_chord(ring, k, position, rules, flags) is not None:
                 assert lo <= position <= hi, (position, window)
+
+
+@given(st.tuples(CM, CM), st.tuples(CM, CM), st.floats(0, 30), st.sampled_from(["start", "end"]),
+       st.booleans(), st.booleans())
+def test_leaf_frame_matches_the_wall_geometry(start, end, centre, hinge, left, outer):
+    """The door leaf's frame in plain floats is the numpy computation of Wall's methods."""
+    if start == end:
+        return
+    wall = Wall(0, start, end, outer, (3, -1 if outer else 4), 0.2)
+    room = 3 if left or outer else 4
+    d = wall.direction
+    normal = wall.normal_into(room)
+    jamb = centre - 0.45 if hinge == "start" else centre + 0.45
+    pivot = np.asarray(wall.point_at(jamb)) + normal * wall.face_offset(room)
+    got = _leaf_frame_xy(wall, centre, 0.9, hinge, room)
+    assert got == (tuple(pivot.tolist()), tuple((d if hinge == "start" else -d).tolist()),
+                   tuple(normal.tolist()))
