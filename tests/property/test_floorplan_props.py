@@ -49,8 +49,11 @@ def test_make_floor_properties(kind, data):
     validate_plan(plan)
     assert plan.footprint.equals(footprint)
     n = len(plan.rooms)
-    if reports:
-        [report] = reports
+    # besides the room count, make_floor may only say how many windows fit
+    assert all(r.message.startswith(("made ", "placed ", "no window fits")) for r in reports)
+    shortfall = [r for r in reports if r.message.startswith("made ")]
+    if shortfall:
+        [report] = shortfall
         assert report.stage == "make_floor" and report.level == "warning"
         assert report.message.startswith(f"made {n} rooms instead of {split + 1}")
         assert n < split + 1
