@@ -6,7 +6,7 @@ sides, typed by the shipped tables) with the shipped furniture tables at disorde
 and 1, runs the independent validator (``tests/support/furniture_checks.py``) on every
 floor at disorder 1 and prints how many floors break a guarantee, the mean free turn of
 the chairs per disorder and the CPU time. The test suite runs a short version
-(``tests/property/test_disorder_props.py``).
+(``tests/property/test_variation_props.py``).
 
 Usage::
 
