@@ -55,11 +55,12 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
         the items were posed from; needed when ``nodes`` has furniture.
     """
     by_floor = {plan.index: plan for plan in plans}
+    parts: dict[str, _Parts] = {}
     out = []
     for node in nodes:
         floor = _floor_of(node.path)
         plan = by_floor.get(floor) if floor is not None else None
-        materials, index = _dress(node, plan, palette, models)
+        materials, index = _dress(node, plan, palette, models, parts)
         out.append(replace(node, **_compact(materials, index)))
     return out
 
@@ -87,11 +88,12 @@ def _floor_of(path: str) -> int | None:
 
 
 def _dress(node: SceneNode, plan: FloorPlan | None, palette: Palette,
-           models: "object | None") -> tuple[list[Material], np.ndarray]:
+           models: "object | None", parts: "dict[str, _Parts]"
+           ) -> tuple[list[Material], np.ndarray]:
     """Candidate materials and each face's index into them."""
     count = len(node.mesh.faces)
     if node.kind == "furniture" and node.item is not None and models is not None:
-        return _furniture(node, plan, palette, models)
+        return _furniture(node, plan, palette, models, parts)
     if plan is not None and node.kind == "wall":
         return _wall(node, plan, palette)
     if plan is not None and node.kind in ("slab", "roof"):
@@ -152,25 +154,36 @@ def _slab(node: SceneNode, plan: FloorPlan, palette: Palette) -> tuple[list[Mate
     return materials + floors, index
 
 
-def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette,
-               models: object) -> tuple[list[Material], np.ndarray]:
+_Parts = tuple[list[tuple[str, tuple[float, float, float]]], np.ndarray]
+"""A model's parts as (group name, own colour), and each face's part."""
+
+
+def _model_parts(model: object) -> _Parts:
+    """The parts of a model (:class:`~cga.operations.furniture.library.FurnitureModel`):
+    name and mean vertex colour (else the model's colour) of each, and the part of each
+    face of the model's mesh."""
+    geometry = model.geometry  # type: ignore[attr-defined]
+    counts = [len(f) for f in geometry.faces]
+    names = geometry.names or tuple(f"part_{k}" for k in range(len(counts)))
+    out = []
+    for name, colors in zip(names, geometry.colors):
+        if colors is not None and len(colors):
+            r, g, b = (float(c) / 255.0 for c in np.asarray(colors)[:, :3].mean(axis=0))
+            out.append((name, (r, g, b)))
+        else:
+            out.append((name, model.color))  # type: ignore[attr-defined]
+    return out, np.repeat(np.arange(len(counts), dtype=np.int64), counts)
+
+
+def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette, models: object,
+               cache: "dict[str, _Parts]") -> tuple[list[Material], np.ndarray]:
     item = node.item
     assert item is not None
-    model = models.get(item.model)  # type: ignore[attr-defined]
-    counts = [len(p.faces) for p in model.parts]
-    names = model.part_names or tuple(f"part_{k}" for k in range(len(counts)))
+    if item.model not in cache:
+        cache[item.model] = _model_parts(models.get(item.model))  # type: ignore[attr-defined]
+    parts, index = cache[item.model]
     key = (f"floor{plan.index}", f"room{item.room}") if plan is not None else ()
-    materials = []
-    for part, name in zip(model.parts, names):
-        visual = part.visual
-        if visual is not None and visual.kind in ("vertex", "face"):
-            colors = np.asarray(visual.vertex_colors)[:, :3]
-            r, g, b = (float(c) / 255.0 for c in colors.mean(axis=0))
-            color = (r, g, b)
-        else:
-            color = model.color
-        materials.append(palette.part(item.model, name, color, key=key))
-    index = np.repeat(np.arange(len(counts), dtype=np.int64), counts)
+    materials = [palette.part(item.model, name, color, key=key) for name, color in parts]
     if len(index) != len(node.mesh.faces):  # a mesh not made from the model's parts
         return materials[:1], np.zeros(len(node.mesh.faces), dtype=np.int64)
     return materials, index

@@ -45,6 +45,7 @@ class Palette:
         self.seed = seed
         self.mode = mode
         self._chosen: dict[tuple[str, ...], Material] = {}
+        self._parts: dict[tuple[str, str], tuple[str, bool]] = {}
 
     def surface(self, surface: str, *, room_type: str | None = None,
                 key: tuple[str, ...] = ()) -> Material:
@@ -60,8 +61,11 @@ class Palette:
         """The material of furniture ``model``'s part (OBJ group) ``part``, whose own
         colour is ``color``; drawn once per ``(model, part class, key)``, or per part
         when a row targets the part by name."""
-        surface = self._part_surface(part)
-        targeted = self.library.targets(model, part)
+        known = self._parts.get((model, part))
+        if known is None:
+            known = self._parts[(model, part)] = (self._part_surface(part),
+                                                  self.library.targets(model, part))
+        surface, targeted = known
         full = ("part", model, surface, *key, *((part.lower(),) if targeted else ()))
         if self.mode == "neutral":
             full = (*full, repr(color))
