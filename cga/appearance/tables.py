@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from cga.errors import RuleTableError, excerpt
 from cga.textfiles import control_character
 
-__all__ = ["Cells", "Range", "rows_of"]
+__all__ = ["MAX_ROWS", "Cells", "Range", "rows_of"]
 
 MAX_ROWS = 1_000
 """Most rows an appearance table may have (docs/limits.md)."""
