@@ -51,8 +51,9 @@ def summary_dict(scene: Scene, *, out_dir: str | Path | None = None) -> dict[str
     ``windows``, ``items``), ``shapes`` (terminal masses and faces), ``diagnostics``
     (``level``, ``stage``, ``message``, ``floor``, ``room``), ``checks`` (per check:
     ``passed``, ``summary``), ``timings`` (seconds per stage and operation),
-    ``difficulty`` (the measured difficulty, docs/difficulty.md; None without floors) and
-    ``out_dir`` when given.
+    ``difficulty`` (the measured difficulty, docs/difficulty.md; None without floors),
+    ``materials`` (``neutral`` or ``random``) and ``lights`` (how many ceiling lights;
+    docs/appearance.md), and ``out_dir`` when given.
     """
     data: dict[str, Any] = {
         "name": scene.name,
@@ -66,6 +67,8 @@ def summary_dict(scene: Scene, *, out_dir: str | Path | None = None) -> dict[str
                    for name, report in scene.checks.items()},
         "timings": {name: round(seconds, 4) for name, seconds in scene.timings.items()},
         "difficulty": scene.difficulty.to_dict() if scene.difficulty is not None else None,
+        "materials": scene.looks().mode,
+        "lights": len(scene.lights),
     }
     if out_dir is not None:
         data["out_dir"] = str(out_dir)
@@ -98,7 +101,8 @@ def print_summary(scene: Scene, *, out_dir: str | Path | None = None, console: A
     data = summary_dict(scene, out_dir=out_dir)
     console.print(f"[bold]{escape(data['name'])}[/bold]  seed {data['seed']}  "
                   f"({len(data['floors'])} floor{'s' * (len(data['floors']) != 1)}, "
-                  f"{data['shapes']} other shape{'s' * (data['shapes'] != 1)})")
+                  f"{data['shapes']} other shape{'s' * (data['shapes'] != 1)}; "
+                  f"{data['materials']} materials, {data['lights']} lights)")
     for floor in data["floors"]:
         console.print(f"[bold]floor {floor['index']}[/bold]: {floor['area_m2']:.1f} m², "
                       f"circulation {100 * floor['circulation_share']:.0f} %, "

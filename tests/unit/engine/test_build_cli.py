@@ -135,6 +135,7 @@ def test_summary_of_a_floor_plan():
     assert [(r["id"], r["type"], r["area_m2"]) for r in floor["rooms"]] == [
         (0, None, 60.0), (1, None, 80.0)]
     assert floor["area_m2"] == 140.0 and data["shapes"] == 0
+    assert data["materials"] == "neutral" and data["lights"] >= 2  # a light per room at least
 
 
 def test_cli_build_prints_summary_and_json(grammar_file, tmp_path, capsys):
