@@ -22,14 +22,20 @@ from __future__ import annotations
 import argparse
 import resource
 import statistics
+import sys
 import tempfile
 from pathlib import Path
 
 from cga.batch import BatchReport, run_batch
 from cga.export import BATCH_FORMATS
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from reference import ReferenceClock  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 TARGET_HOUSES_PER_SECOND = 5.0
+TARGET_CPU_PER_HOUSE = {"no-physics": 0.15, "physics": 0.4}
+"""CPU seconds per house (workers and this process; issue 21)."""
 MODES = {"no-physics": False, "physics": True}
 """Mode name → whether the physics and navigability checks run."""
 
@@ -87,23 +93,39 @@ def main() -> None:
         parser.error(f"--modes takes {', '.join(MODES)}; --repeats must be ≥ 1")
 
     print(f"## run_batch({args.grammar.name}, jobs={args.jobs}, files: {', '.join(formats)})\n")
-    print("| mode | houses | wall s | houses/s | CPU s | houses/s on idle cores | valid | placed "
-          "| mean s | p95 s | errors |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    clock = ReferenceClock()
+    print("| mode | houses | wall s | houses/s | CPU s | CPU s / house | / ref | "
+          "houses/s on idle cores | valid | placed | mean s | p95 s | errors |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    per_house: dict[str, list[float]] = {}
     rates: dict[str, list[float]] = {}
     failures: list[str] = []
     for mode in modes:
         count = args.count if mode == "no-physics" else args.physics_n
         for _ in range(args.repeats):
+            for _ in range(10):
+                clock.sample()
             report, cpu = one_run(args.grammar, count, args.jobs, MODES[mode], formats)
+            for _ in range(10):
+                clock.sample()
             data = report.to_dict()
             rates.setdefault(mode, []).append(report.houses_per_second)
+            house_cpu = cpu / max(report.built_now, 1)
+            per_house.setdefault(mode, []).append(house_cpu)
             print(f"| {mode} | {report.count} | {report.wall_seconds:.1f} | "
-                  f"{report.houses_per_second:.2f} | {cpu:.1f} | "
+                  f"{report.houses_per_second:.2f} | {cpu:.1f} | {house_cpu:.3f} | "
+                  f"{clock.ratio(house_cpu):,.0f} | "
                   f"{report.built_now / (cpu / args.jobs):.2f} | {data['validity_rate']:.1%} | "
                   f"{data['placement_rate']:.1%} | {report.mean_seconds:.3f} | "
                   f"{report.p95_seconds:.3f} | {data['errors']} |")
             failures.append(f"{mode}, {report.count} houses: {_failures(report)}")
+    print()
+    print(clock.describe())
+    for mode, values in per_house.items():
+        median = statistics.median(values)
+        print(f"{mode}: CPU per house median {median:.3f} s ({clock.ratio(median):,.0f} × ref); "
+              f"target ≤ {TARGET_CPU_PER_HOUSE[mode]} s: "
+              f"{'met' if median <= TARGET_CPU_PER_HOUSE[mode] else 'not met'}")
     print()
     print("Invalid houses by failed check:")
     for line in failures:

@@ -123,9 +123,9 @@ class OccupancyGrid:
     floor: int
     band: tuple[float, float]
     obstacles: tuple[Obstacle, ...] = ()
-    cells: dict[str, list[_Patch]] = field(default_factory=dict, compare=False, repr=False)
-    """The cells each obstacle (by path) was painted into, kept so that
-    :meth:`occupied_by` need not rasterise its shadow again."""
+    cells: dict[int, list[_Patch]] = field(default_factory=dict, compare=False, repr=False)
+    """The cells of each obstacle (by its index in ``obstacles``), rasterised by the
+    first :meth:`occupied_by` that asks for it and kept for the next."""
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -166,12 +166,12 @@ class OccupancyGrid:
         """The cells occupied by the obstacles with these node paths only."""
         wanted = set(paths)
         mask = np.zeros(self.shape, dtype=bool)
-        for obstacle in self.obstacles:
+        for index, obstacle in enumerate(self.obstacles):
             if obstacle.path in wanted:
-                patches = self.cells.get(obstacle.path)
+                patches = self.cells.get(index)
                 if patches is None:
-                    patches = _patches(mask.shape, obstacle.footprint, self.x_min,
-                                       self.z_min, self.resolution)
+                    patches = self.cells[index] = _patches(
+                        mask.shape, obstacle.footprint, self.x_min, self.z_min, self.resolution)
                 _apply(mask, patches)
         return mask
 
@@ -351,13 +351,6 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
     _paint(free_mask, plan.footprint, x_min, z_min, resolution)
     extent = shapely.box(x_min, z_min, x_min + cols * resolution, z_min + rows * resolution)
     obstacles = []
-    cells: dict[str, list[_Patch]] = {}
-
-    def paint(obstacle: Obstacle) -> None:
-        patches = _patches(occupied.shape, obstacle.footprint, x_min, z_min, resolution)
-        cells.setdefault(obstacle.path, []).extend(patches)
-        _apply(occupied, patches)
-
     for node in obstacle_nodes(nodes, include_doors=include_doors):
         if node.kind == "furniture" and node.door is None and not include_furniture:
             continue
@@ -369,14 +362,14 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
         obstacles.append(Obstacle(node.path, node.kind, footprint,
                                   node.item.room if node.item is not None else None,
                                   node.door.door if node.door is not None else None))
-        paint(obstacles[-1])
+        _paint(occupied, footprint, x_min, z_min, resolution)
     # a floor read back from files has its stairs as meshes among the nodes already
     for obstacle in stair_obstacles(plan) if isinstance(plan, FloorPlan) else ():
         obstacles.append(obstacle)
-        paint(obstacle)
+        _paint(occupied, obstacle.footprint, x_min, z_min, resolution)
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
                          resolution=resolution, floor=plan.index, band=(y0, y1),
-                         obstacles=tuple(obstacles), cells=cells)
+                         obstacles=tuple(obstacles))
 
 
 def stair_obstacles(plan: FloorPlan) -> list[Obstacle]:
