@@ -73,6 +73,9 @@ def partition_to_areas(footprint: Sequence[Point], areas: Sequence[float],
     dcel = DCEL.from_polygons(rings)
     circulation = {dcel.faces[i] for i, f in enumerate(fixed) if f.circulation}
     free = dcel.faces[len(fixed):]
+    if not free:  # the fixed faces fill the floor (rooms laid out along a corridor)
+        return Partition(dcel, (), len(areas) - pieces, _shortfall(dcel, rules, len(fixed)),
+                         fixed)
     shares = _share([Polygon(dcel.points(f)) for f in free], list(areas), min_width, rng)
     todo = list(zip(free, shares))
     cuts: list[Cut] = []

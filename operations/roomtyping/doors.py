@@ -118,7 +118,7 @@ def front_door_site(candidates: Sequence[tuple[Wall, Interval]], width: float,
     best: tuple[Wall, Interval] | None = None
     for wall, span in candidates:
         for lo, hi in free_intervals(wall, span):
-            if hi - lo >= width and (best is None or hi - lo > best[1][1] - best[1][0]):
+            if hi - lo >= width - 1e-9 and (best is None or hi - lo > best[1][1] - best[1][0]):
                 best = (wall, (lo, hi))
     if best is not None:
         return best[0], door_centre(best[1], width, rng, position), False

@@ -55,3 +55,16 @@ def test_leaves_that_cannot_be_cut_are_reported():
     result = partition_to_areas([(0, 0), (5, 0), (5, 3), (0, 3)], [5, 5, 5], np.random.default_rng(0),
                                 min_width=2.4, min_area=4)
     assert len(result.dcel.faces) == 2 and result.shortfall is not None
+
+
+def test_fixed_faces_that_fill_the_floor_leave_nothing_to_cut():
+    """Rooms laid out along a corridor (n_left, n_right) fill the floor: a re-draw has no
+    free piece to cut and says so instead of failing."""
+    corridor = FixedFace(((0, 9), (20, 9), (20, 11), (0, 11)), circulation=True)
+    below = FixedFace(((0, 0), (20, 0), (20, 9), (0, 9)))
+    above = FixedFace(((0, 11), (20, 11), (20, 20), (0, 20)))
+    result = partition_to_areas(SQUARE, [60, 60, 60], np.random.default_rng(0), min_width=2.0,
+                                min_area=4, fixed=[corridor, below, above], min_contact=1.5)
+    validate_dcel(result.dcel, Polygon(SQUARE))
+    assert len(result.dcel.faces) == 3 and not result.cuts
+    assert result.shortfall == "the fixed faces leave no free floor to cut"

@@ -7,9 +7,9 @@ import pytest
 from typing_checks import validate_typed_plan
 
 from cga.errors import NoSolutionError
-from cga.model import OUTSIDE, FloorSettings, Opening
+from cga.model import OUTSIDE, FloorSettings, Opening, Wall
 from cga.operations.floorplan.rectangles import plan_from_rectangles
-from cga.operations.roomtyping.doors import door_spans, door_swing, free_intervals
+from cga.operations.roomtyping.doors import door_spans, door_swing, free_intervals, front_door_site
 from cga.operations.roomtyping.room_graph import door_sites
 from cga.operations.roomtyping.rules import parse_rule_table
 from cga.operations.type_rooms import type_plan
@@ -106,6 +106,17 @@ def test_front_door_replaces_a_window_when_no_gap_takes_it():
     assert all(w.wall != wall.id for w in typed.windows)
     note = next(d for d in typed.diagnostics if "replaces 1 window" in d.message)
     assert note.level == "info"
+
+
+def test_front_door_fits_a_stretch_exactly_its_width():
+    """A 1.5 m hall end between 0.2 m walls leaves 0.9 m for a 0.9 m door, give or take
+    the rounding of 0.1 + 0.2 (the hall of a 1.5 m centre-line corridor)."""
+    wall = Wall(0, (0.0, 0.0), (1.5, 0.0), True, (0, OUTSIDE), 0.2)
+    span = door_spans(plan_from_rectangles([(0, 0, 1.5, 6)]))[0]
+    assert span[1] - span[0] < 0.9  # 0.8999999999999999
+    chosen, centre, replaces = front_door_site([(wall, span)], 0.9, np.random.default_rng(0),
+                                               "random")
+    assert chosen is wall and not replaces and centre == pytest.approx(0.75)
 
 
 def test_front_door_takes_one_windows_place_not_two():
