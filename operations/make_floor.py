@@ -31,7 +31,7 @@ from cga.shape import Mass, Shape
 
 from cga.operation import Child, Operation, OperationContext, Param, is_number
 from .floorplan.assemble import plan_from_dcel
-from .floorplan.bsp import FixedFace, partition
+from .floorplan.bsp import FixedFace, Partition, partition
 from .floorplan.layout import LayoutRecipe
 from .floorplan.openings import window_shortfall
 from .floorplan.treemap import thesis_partition
@@ -187,7 +187,7 @@ class MakeFloor(Operation):
                 hint="make the doors narrower or the rooms fewer")
         if result.shortfall is not None:
             ctx.report(Diagnostic("warning", "make_floor",
-                                  f"made {len(result.dcel.faces)} rooms instead of {split + 1}: "
+                                  f"made {_rooms_made(result, core)} rooms instead of {split + 1}: "
                                   f"{result.shortfall}", floor=index))
         windows = window_shortfall(plan.walls, settings, index)
         if windows is not None:
@@ -202,6 +202,11 @@ class MakeFloor(Operation):
 
 
 _CORE_ATTEMPTS = 8
+
+
+def _rooms_made(result: Partition, core: StairCore | None) -> int:
+    """Rooms of a partition as ``split`` counts them: without corridors, halls and the core."""
+    return len(result.dcel.faces) - len(result.circulation) - (core is not None)
 """Partitions drawn (from the storey's stream) until the stair landing has a door site."""
 
 

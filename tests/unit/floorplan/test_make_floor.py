@@ -249,3 +249,14 @@ def test_only_partition_errors_become_user_errors(monkeypatch):
     with pytest.raises(ValueError, match="broadcast") as caught:
         MakeFloor().apply(storey(), args(), context()[0])
     assert not isinstance(caught.value, DerivationError)
+
+
+def test_shortfall_counts_rooms_without_the_hall():
+    """``split + 1`` rooms besides the circulation: the warning counts them the same way."""
+    ctx, reports = context(seed=6, rng_seed=6)  # a seed that falls one room short
+    [child] = MakeFloor().apply(storey(box(0, 0, 14, 10)), args(
+        split=9, min_room_width=2.0, min_room_area=4.0, corridor="spine", corridor_width=1.6,
+        corridor_position=0.42), ctx)
+    rooms = sum(not r.circulation for r in child.plan.rooms)
+    [d] = [r for r in reports if r.level == "warning"]
+    assert rooms < 10 and d.message.startswith(f"made {rooms} rooms instead of 10: ")
