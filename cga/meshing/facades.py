@@ -165,7 +165,7 @@ def _cut_face(node: SceneNode, cutter: manifold3d.Manifold) -> trimesh.Trimesh |
     holes = _section_polygon(section.to_polygons())
     local = np.asarray(mesh.vertices, dtype=float) @ rotation.T - rotation @ origin
     face = shapely.union_all(shapely.polygons(local[np.asarray(mesh.faces)][:, :, :2]).tolist())
-    rest = face.difference(holes)
+    rest = shapely.make_valid(face).difference(holes)
     return polygon_mesh(rest, origin, u, v, normal)
 
 
@@ -177,5 +177,6 @@ def _section_polygon(rings: Sequence[np.ndarray]) -> shapely.Geometry:
     for ring in rings:
         if len(ring) >= 3:
             polygon = Polygon(ring)
-            (outer if shapely.is_ccw(polygon.exterior) else inner).append(polygon)
+            side = outer if shapely.is_ccw(polygon.exterior) else inner
+            side.append(polygon if polygon.is_valid else shapely.make_valid(polygon))
     return shapely.union_all(outer).difference(shapely.union_all(inner)) if outer else Polygon()
