@@ -141,3 +141,19 @@ def test_upper_floor_uses_its_own_band(kit):
     assert [o.path for o in grid.obstacles] == [upstairs.path]
     assert grid.band == pytest.approx((upper.floor_y + 0.05, upper.floor_y + 1.2))
     assert math.isclose(grid.band[0], 3.25)
+
+
+def test_occupied_by_is_the_same_when_asked_again(kit, two_rooms):
+    """occupied_by keeps each obstacle's cells from its first rasterisation; asking again
+    (in another mix) gives exactly the cells of a grid that rasterises them anew."""
+    nodes = kit.structure(two_rooms) + [
+        kit.box_item("table", (1.2, 0.75, 0.8), (2.0, 2.0)),
+        kit.box_item("sofa", (2.0, 0.8, 0.9), (6.0, 1.0))]
+    grid = occupancy_grid(two_rooms, nodes)
+    paths = [o.path for o in grid.obstacles]
+    first = grid.occupied_by(paths)
+    for chosen in (paths[::2], paths[-1:], paths):
+        fresh = occupancy_grid(two_rooms, nodes).occupied_by(chosen)
+        assert np.array_equal(grid.occupied_by(chosen), fresh)
+    assert np.array_equal(first, grid.occupied_by(paths))
+    assert first.any()
