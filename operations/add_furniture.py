@@ -3,8 +3,8 @@ steeringIterations, clearanceTries)``: furnish every typed room of a floor.
 
 The thin grammar-facing wrapper of :mod:`cga.operations.furniture.solver` (docs/furniture.md,
 thesis §5.3.4): it reads the rule table, looks up each item's model (loaded once per
-build through the shared model library), converts the table's distances from grammar
-units to metres and returns the floor with its furniture and the solver's messages.
+build through the shared model library), converts the table's distances to metres
+(from grammar units unless the table says ``# units: m``) and returns the floor with its furniture and the solver's messages.
 """
 
 from __future__ import annotations
@@ -15,8 +15,9 @@ from typing import Any
 import numpy as np
 
 from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError
-from cga.model import FloorPlan
+from cga.model import Diagnostic, FloorPlan
 from cga.shape import Shape
+from cga.table_units import unit_note
 
 from cga.operation import CheckContext, Child, Operation, OperationContext, Param, is_number
 from .furniture.library import ModelLibrary, grammar_library
@@ -157,6 +158,9 @@ def _rules(ctx: OperationContext | CheckContext, path: Path) -> FurnitureRules:
     rules = ctx.cache.get(key)
     if rules is None:
         rules = ctx.cache[key] = load_furniture_rules(path)
+        note = unit_note(rules.file, rules.unit, ctx.units, "distances and clearances")
+        if isinstance(ctx, OperationContext) and note is not None:
+            ctx.report(Diagnostic("info", "add_furniture", note))
     return rules
 
 

@@ -38,6 +38,7 @@ import numpy as np
 from cga.errors import DerivationError, NoSolutionError, excerpt
 from cga.model import OUTSIDE, Diagnostic, Door, FloorPlan, Room, Wall, Window
 from cga.shape import Shape
+from cga.table_units import describe_unit, unit_note
 
 from cga.operation import CheckContext, Child, Operation, OperationContext, Param
 from .roomtyping.assign import Typing, assign_types
@@ -67,6 +68,9 @@ in it (keeping the margins)."""
 
 _STAGE = "type_rooms"
 
+_SMALLEST_ROOM_M2 = 2.0
+"""Sizes below this (a closet) do not look like m² to :func:`unit_mismatch`."""
+
 
 def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
               units: float = 1.0, strict: bool = False,
@@ -83,8 +87,8 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     rng:
         The only source of randomness (first rule, rooms, door positions).
     units:
-        Metres per grammar unit; the table's ``Size`` is in grammar units², so it is
-        multiplied by ``units²``.
+        Metres per grammar unit; a table's ``Size`` is multiplied by ``units²`` unless
+        the table is in metres (``# units: m``, :meth:`RuleTable.area_scale`).
     strict:
         Fail instead of adding doors the rules do not ask for.
     door_position:
@@ -118,8 +122,8 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
                                  door_position=door_position, door_state=door_state)
             leftover = [r.id for r in typed.rooms if r.type == DEFAULT_TYPE]
             if not (leftover and table.has_access):
-                return _redrawn(typed, attempt, first_error)
-            fallback = fallback or _redrawn(typed, attempt, first_error)
+                return _redrawn(typed, attempt, first_error, table, units)
+            fallback = fallback or _redrawn(typed, attempt, first_error, table, units)
             first_error = first_error or NoSolutionError(
                 f"room{'s' if len(leftover) > 1 else ''} {', '.join(map(str, leftover))} fit no "
                 "rule of the table")
@@ -128,27 +132,64 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         recipe = plan.layout
         if recipe is None or attempt == MAX_REDRAWS:
             break
-        areas = target_areas(table, recipe.free_rooms, _free_area(plan), units ** 2)
+        areas = target_areas(table, recipe.free_rooms, _free_area(plan), table.area_scale(units))
         plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
     if fallback is not None:
         return fallback
     assert first_error is not None
-    if plan.layout is None:
+    reasons = list(first_error.reasons)
+    if plan.layout is not None:
+        reasons.append(f"the floor was re-drawn {MAX_REDRAWS} times (cuts aimed at the "
+                       "table's areas) without a layout the rules can type")
+    reasons += unit_reasons(table, units, _free_area(plan))
+    if reasons == first_error.reasons:
         raise first_error
-    raise NoSolutionError(str(first_error).splitlines()[0], first_error.reasons + [
-        f"the floor was re-drawn {MAX_REDRAWS} times (cuts aimed at the table's areas) "
-        "without a layout the rules can type"]) from None
+    raise NoSolutionError(str(first_error).splitlines()[0], reasons) from None
 
 
-def _redrawn(typed: FloorPlan, attempt: int, first_error: NoSolutionError | None) -> FloorPlan:
-    """``typed`` with a note on the re-draws it took (none: unchanged)."""
-    if not attempt or first_error is None:
-        return typed
-    why = str(first_error).splitlines()[0]
-    return typed.with_changes(diagnostics=typed.diagnostics + (Diagnostic(
-        "info", _STAGE, f"re-drew the floor {attempt} time{'s' if attempt > 1 else ''} with "
-        f"cuts aimed at the table's areas; the first layout had no typing: {why}",
-        floor=typed.index),))
+def unit_reasons(table: RuleTable, units: float, free_area: float) -> list[str]:
+    """What a failed typing's areas were read in when that depends on the grammar
+    (``units`` ≠ 1 and a table not in metres), and :func:`unit_mismatch`."""
+    if units == 1 or table.unit == "m":
+        return []
+    mismatch = unit_mismatch(table, units, free_area)
+    return [f"the sizes of {table.file} are read in "
+            f"{describe_unit(table.unit, units, power=2)}"] + ([mismatch] if mismatch else [])
+
+
+def unit_mismatch(table: RuleTable, units: float, free_area: float) -> str | None:
+    """When a table's mandatory sizes fit a floor of ``free_area`` m² read as m² but not
+    scaled by ``units²`` (the table is likely in metres under a grammar whose units are
+    not), a sentence saying so and how to fix it (:mod:`cga.table_units`)."""
+    if units <= 1 or table.unit == "m":
+        return None
+    scale = table.area_scale(units)
+    sizes = [rule.size for rule in table.mandatory if rule.size > 0]
+    total = sum(sizes)  # one room of each, at least
+    # m² of real rooms are at least a closet's 2 m² (2 units² at units = 10 is 200 m²)
+    if not sizes or min(sizes) < _SMALLEST_ROOM_M2 or not total * scale > free_area >= total:
+        return None
+    return (f"the sizes of {table.file} look like m²: its mandatory rooms need at least "
+            f"{total:g} in the table, {total * scale:,.1f} m² at units = {units:g}, on a floor of "
+            f"{free_area:,.1f} m²; if the table is in metres, put the line '# units: m' "
+            f"above its header (or set the grammar's units = 1 if its lengths are metres)")
+
+
+def _redrawn(typed: FloorPlan, attempt: int, first_error: NoSolutionError | None,
+             table: RuleTable, units: float) -> FloorPlan:
+    """``typed`` with a note on the re-draws it took and a warning when the table's
+    sizes look read in the wrong unit (:func:`unit_mismatch`)."""
+    notes = []
+    if attempt and first_error is not None:
+        why = str(first_error).splitlines()[0]
+        notes.append(Diagnostic(
+            "info", _STAGE, f"re-drew the floor {attempt} time{'s' if attempt > 1 else ''} "
+            f"with cuts aimed at the table's areas; the first layout had no typing: {why}",
+            floor=typed.index))
+    mismatch = unit_mismatch(table, units, _free_area(typed))
+    if mismatch is not None:
+        notes.append(Diagnostic("warning", _STAGE, mismatch, floor=typed.index))
+    return typed.with_changes(diagnostics=typed.diagnostics + tuple(notes)) if notes else typed
 
 
 def _free_area(plan: FloorPlan) -> float:
@@ -179,7 +220,8 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         rooms = RoomSet(areas=tuple(room.area for room in free), adjacency=sites.adjacency(ids),
                         entrances=entrances, ids=ids, outer=outer)
         try:
-            typing = assign_types(rooms, table, rng, area_scale=units ** 2, pinned=pinned)
+            typing = assign_types(rooms, table, rng, area_scale=table.area_scale(units),
+                                  pinned=pinned)
             break
         except NoSolutionError:
             if attempt == len(choices):
@@ -189,7 +231,7 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
              for n in typing.notes]
     types = {**dict(zip(ids, typing.types)), **fixed}
     typed = plan.with_changes(rooms=tuple(
-        r if r.id in fixed else _typed_room(r, types[r.id], table, units ** 2)
+        r if r.id in fixed else _typed_room(r, types[r.id], table, table.area_scale(units))
         for r in plan.rooms))
 
     front_room, entry, entry_notes = _entry(typed, table, typing, ids, sites, wants_front_door)
@@ -435,16 +477,23 @@ class TypeRooms(Operation):
         written = str(args["door_position"]).lower()
         position = next(p for p in DOOR_POSITIONS if p == written)  # check_values refused others
         state = str(args["door_state"]).lower()
-        table = _cached_table(ctx.resolve(args["rules"], "rules"), ctx.cache)
+        table = _cached_table(ctx.resolve(args["rules"], "rules"), ctx.cache, ctx)
         plan = type_plan(shape.plan, table, ctx.rng, units=ctx.units,
                          strict=bool(args["strict"]) or ctx.strict, door_position=position,
                          door_state=state)
         return [Child(successor=0, geometry=shape.geometry, scope=shape.scope, plan=plan)]
 
 
-def _cached_table(path: Any, cache: dict[str, Any]) -> RuleTable:
-    """Parse each table once per build (every floor of a building usually shares one)."""
+def _cached_table(path: Any, cache: dict[str, Any],
+                  ctx: OperationContext | None = None) -> RuleTable:
+    """Parse each table once per build (every floor of a building usually shares one);
+    the first time, say in ``ctx``'s diagnostics how its sizes are read when that
+    depends on the grammar's units."""
     key = f"type_rooms:{path}"
     if key not in cache:
-        cache[key] = load_rule_table(path)
+        table = cache[key] = load_rule_table(path)
+        note = None if ctx is None else unit_note(table.file, table.unit, ctx.units,
+                                                  "room sizes")
+        if ctx is not None and note is not None:
+            ctx.report(Diagnostic("info", _STAGE, note))
     return cache[key]

@@ -22,7 +22,9 @@ Meaning of the columns beyond the thesis' own words:
 * ``maxPairDistance`` 0 (or empty) means no upper bound.
 * ``needsTurn`` (never explained in the thesis): the item stands with a *side* against
   its wall instead of its back (a bed with its long side on the wall).
-* Distances are in grammar units; :meth:`FurnitureRules.scaled` converts them to metres.
+* Distances are in grammar units, or in metres when a ``# units: m`` line stands above
+  the header (:mod:`cga.table_units`); :meth:`FurnitureRules.scaled` converts them to
+  metres. Other lines starting with ``#`` are comments.
 
 Optional columns beyond the thesis: ``sizeJitter`` (one fraction, or three for width,
 height and depth, by which each placed item's extents vary; :mod:`.variation`) and
@@ -45,6 +47,7 @@ from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 from cga.errors import BudgetError, RuleTableError, excerpt
+from cga.table_units import TableUnit, declared_unit, scale
 from cga.textfiles import MAX_NAME_LENGTH, control_character, read_table_text
 
 __all__ = ["MAX_FURNITURE_ROWS", "MAX_SIZE_JITTER", "FurnitureRule", "FurnitureRules", "parse_furniture_rules",
@@ -160,6 +163,8 @@ class FurnitureRules:
 
     rules: tuple[FurnitureRule, ...]
     file: str = "<rules>"
+    unit: TableUnit | None = None
+    """The unit its ``# units:`` line declares (None: none, so grammar units)."""
 
     def __iter__(self) -> Iterator[FurnitureRule]:
         return iter(self.rules)
@@ -202,11 +207,13 @@ class FurnitureRules:
         return [r for r in self.rules if r.is_detail and r.room.lower() == room_type.lower()]
 
     def scaled(self, units: float) -> "FurnitureRules":
-        """A copy with every distance multiplied by ``units`` (metres per grammar unit)."""
-        if units == 1:
+        """A copy with every distance in metres under a grammar of ``units`` metres per
+        unit: multiplied by ``units`` unless the table is in metres."""
+        factor = scale(self.unit, units)
+        if factor == 1:
             return self
         return replace(self, rules=tuple(
-            replace(r, **{k: getattr(r, k) * units for k in _DISTANCES}) for r in self.rules))
+            replace(r, **{k: getattr(r, k) * factor for k in _DISTANCES}) for r in self.rules))
 
 
 def load_furniture_rules(path: str | Path) -> FurnitureRules:
@@ -266,7 +273,7 @@ def parse_furniture_rules(text: str, *, file: str = "<rules>") -> FurnitureRules
                                      column=_COLUMNS[key][0].capitalize())
         rules.append(FurnitureRule(row=row, **values))  # type: ignore[arg-type]
     checked = _check_rules(rules, file)
-    return FurnitureRules(tuple(checked), file)
+    return FurnitureRules(tuple(checked), file, unit=declared_unit(text, file=file))
 
 
 def _split(line: str, delimiter: str, file: str, row: int) -> list[str]:

@@ -10,7 +10,7 @@ The header row is required; its names are matched case-insensitively and give th
 order. Besides the thesis' seven columns, a table may add access columns (DESIGN §11;
 each optional, so the thesis' tables work unchanged):
 
-* ``maxSize``: the largest area (grammar units², empty: no limit);
+* ``maxSize``: the largest area (in the unit of ``Size``; empty: no limit);
 * ``enteredFrom``: the types a room of this type may be entered from (comma list).
   When a table has this column, doors are cut only towards those types: adjacency
   alone makes no door, and ``Neighbours`` only says where the room is placed;
@@ -19,8 +19,13 @@ each optional, so the thesis' tables work unchanged):
   room only when that room lists its type in ``enteredFrom`` (an en-suite bathroom);
 * ``needsWindow``: the room must have an outer wall (default false);
 * ``circulation``: the type is a hall, corridor or landing (default false): it takes the
-  corridors ``make_floor`` carves and is drawn as circulation. Blank lines (also rows of bare semicolons, as spreadsheets export them) are
-ignored. ``Neighbours`` is a comma list; booleans accept 0/1/true/false in any case;
+  corridors ``make_floor`` carves and is drawn as circulation.
+
+Blank lines (also rows of bare semicolons, as spreadsheets export them) and lines
+starting with ``#`` are ignored. A ``# units: m`` line above the header says ``Size`` and
+``maxSize`` are m², whatever the grammar's ``units``; without it (the thesis' tables)
+they are grammar units², scaled by ``units²`` (:mod:`cga.table_units`).
+``Neighbours`` is a comma list; booleans accept 0/1/true/false in any case;
 numbers may use a decimal comma (``0,25``), as German spreadsheets write them.
 
 Everything the typing relies on is checked here, once, so the typing algorithm can trust
@@ -36,6 +41,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from cga.errors import BudgetError, RuleTableError, excerpt
+from cga.table_units import TableUnit, declared_unit, scale
 from cga.textfiles import MAX_NAME_LENGTH, control_character, read_table_text
 
 __all__ = [
@@ -74,8 +80,8 @@ _FALSE = frozenset({"0", "false"})
 class TypeRule:
     """One row of a typing table.
 
-    ``size`` is the minimum room area in grammar units² as written in the table (the
-    typing scales it by ``units²``). ``optional`` is the table's ``additionRoom``:
+    ``size`` is the minimum room area as written in the table, in the table's unit
+    (:meth:`RuleTable.area_scale` converts it to m²). ``optional`` is the table's ``additionRoom``:
     mandatory rules (False) must all be placed; optional ones only fill rooms that remain.
     ``row`` is the rule's line in the file, for messages.
     """
@@ -117,6 +123,13 @@ class RuleTable:
     rules: tuple[TypeRule, ...]
     has_access: bool = False
     """True when the table has an ``enteredFrom`` column: doors follow access rules."""
+    unit: TableUnit | None = None
+    """The unit its ``# units:`` line declares (None: none, so grammar units)."""
+
+    def area_scale(self, units: float) -> float:
+        """m² per unit of ``Size``/``maxSize`` under a grammar of ``units`` metres per
+        unit: 1 for a metre table, else ``units²``."""
+        return scale(self.unit, units) ** 2
 
     @property
     def mandatory(self) -> tuple[TypeRule, ...]:
@@ -182,8 +195,9 @@ def parse_rule_table(text: str, *, file: str = "<rules>") -> RuleTable:
         default type ``Commonroom`` is always known), more than one ``isOutsideConnected``
         rule, an optional ``isOutsideConnected`` rule, or no mandatory rule.
     """
+    unit = declared_unit(text, file=file)
     rows = [(number, line) for number, line in enumerate(text.splitlines(), start=1)
-            if line.replace(";", "").strip()]
+            if line.replace(";", "").strip() and not line.lstrip().startswith("#")]
     if not rows:
         raise RuleTableError("the table is empty; it needs a header row "
                              f"'{';'.join(COLUMNS)}' and at least one rule", file=file)
@@ -197,7 +211,7 @@ def parse_rule_table(text: str, *, file: str = "<rules>") -> RuleTable:
         raise RuleTableError("the table has a header but no rules", file=file)
     rules = _resolve_neighbours(drafts, file=file)
     _check_table(rules, file=file)
-    return RuleTable(file=file, rules=rules, has_access="enteredFrom" in order)
+    return RuleTable(file=file, rules=rules, has_access="enteredFrom" in order, unit=unit)
 
 
 def _cells(line: str) -> list[str]:

@@ -63,9 +63,12 @@ def _key(header: str) -> str:
 def read_furniture_rules(path: str | Path, units: float = 1.0) -> dict[tuple[str, str], dict]:
     """``(room type, item name)`` (lower case) → the row's values (distances × units)."""
     text = Path(path).read_text(encoding="utf-8-sig")
-    header_line = next(line for line in text.splitlines() if line.strip())
-    delimiter = max(";\t,", key=header_line.count)
-    rows = [r for r in csv.reader(text.splitlines(), delimiter=delimiter) if any(c.strip() for c in r)]
+    lines = [line for line in text.splitlines() if line.strip()]
+    if lines[0].replace(" ", "").lower() == "#units:m":
+        units = 1.0  # distances of a metre table are metres under any grammar units
+    lines = [line for line in lines if not line.lstrip().startswith("#")]
+    delimiter = max(";\t,", key=lines[0].count)
+    rows = [r for r in csv.reader(lines, delimiter=delimiter) if any(c.strip() for c in r)]
     header = [_key(h) for h in rows[0]]
     rules = {}
     for row in rows[1:]:

@@ -23,10 +23,18 @@ TOL = 1e-6
 MARGIN = 0.1
 
 
+def table_in_metres(path: str | Path) -> bool:
+    """Whether the table's first line is the documented ``# units: m`` declaration."""
+    first = Path(path).read_text(encoding="utf-8-sig").lstrip().splitlines()[0]
+    return first.replace(" ", "").rstrip(";").lower() == "#units:m"
+
+
 def read_rules(path: str | Path) -> list[dict]:
-    """The rules of a thesis-format table as dicts (lower-case keys, parsed values)."""
+    """The rules of a thesis-format table as dicts (lower-case keys, parsed values);
+    ``#`` lines are comments (docs/room_typing.md)."""
     with open(path, newline="", encoding="utf-8-sig") as handle:
-        rows = [row for row in csv.reader(handle, delimiter=";") if any(c.strip() for c in row)]
+        rows = [row for row in csv.reader(handle, delimiter=";")
+                if any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
     header = [h.strip().lower() for h in rows[0]]
     rules = []
     for row in rows[1:]:
@@ -50,6 +58,8 @@ def validate_typed_plan(plan, rules_path: str | Path, *, units: float = 1.0,
                         front_door: bool = True) -> None:
     """Assert everything the typing promises about ``plan`` (raises AssertionError)."""
     rules = read_rules(rules_path)
+    if table_in_metres(rules_path):
+        units = 1.0  # a metre table's sizes are m² under any grammar units
     rooms = {room.id: room for room in plan.rooms}
     types = {rid: room.type for rid, room in rooms.items()}
 

@@ -119,8 +119,10 @@ def _uncapped(project: Path) -> None:
     """Empty the house tables' maxSize column: rooms of a huge lot can then be typed."""
     for name in ("house_types.csv", "house_upper_types.csv"):
         lines = (project / name).read_text().splitlines()
-        column = lines[0].split(";").index("maxSize")
-        rows = [";".join("" if i == column and n else c for i, c in enumerate(line.split(";")))
+        header = next(n for n, line in enumerate(lines) if not line.startswith("#"))
+        column = lines[header].split(";").index("maxSize")
+        rows = [";".join("" if i == column and n > header else c
+                         for i, c in enumerate(line.split(";")))
                 for n, line in enumerate(lines)]
         (project / name).write_text("\n".join(rows) + "\n")
 
