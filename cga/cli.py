@@ -68,8 +68,10 @@ def _add_build_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=int, default=0, metavar="N",
                         help="random seed; the same seed gives byte-identical files (default 0)")
     parser.add_argument("--lot", metavar="LOT",
-                        help='footprint in metres: 14x10, "polygon((0,0),(14,0),...)" or a '
-                             ".geojson file (default: the grammar's Lot:, else 14x10)")
+                        help="footprint: 14x10 (metres, also written 14x10m), 1.4x1u (grammar "
+                             'units), "polygon((0,0),(14,0),...)" (metres) or a .geojson file '
+                             "(WGS84 longitude/latitude, a projected CRS or local metres; "
+                             "docs/lots.md). Default: the grammar's Lot:, else 14x10 m")
     parser.add_argument("--out", metavar="DIR",
                         help="output folder (default out/<grammar name>)")
     parser.add_argument("--units", type=float, metavar="U",

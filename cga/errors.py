@@ -85,9 +85,13 @@ class CGAError(Exception):
     ``diagnostics`` are the warnings and notes the build gave before it failed (a
     derivation attaches them), so a cause found early ("made 4 rooms instead of 51")
     is not lost when a later step fails; :meth:`report` shows them after the message.
+    :meth:`add_hint` appends a line that a caller knowing more context adds on the way
+    out (e.g. that the lot's size may be in the wrong unit); it is printed after the
+    message as ``hint: ...``.
     """
 
     diagnostics: tuple[Any, ...] = ()
+    hints: tuple[str, ...] = ()
 
     def report(self) -> str:
         """The message, then the diagnostics given before the error, one per line."""
@@ -95,6 +99,16 @@ class CGAError(Exception):
             return str(self)
         return (f"{self}\nbefore this error the build reported:"
                 + "".join(f"\n  {d.level} {d}" for d in self.diagnostics))
+
+    def add_hint(self, hint: str) -> "CGAError":
+        self.hints = (*self.hints, hint)
+        return self
+
+    def _hint_lines(self) -> str:
+        return "".join(f"\n  hint: {hint}" for hint in self.hints)
+
+    def __str__(self) -> str:
+        return super().__str__() + self._hint_lines()
 
 
 class SourceError(CGAError):
@@ -124,7 +138,7 @@ class SourceError(CGAError):
                 text += "\n" + excerpt
         if self.hint:
             text += f"\n  hint: {self.hint}"
-        return text
+        return text + self._hint_lines()
 
     def _excerpt(self) -> str:
         if self.source is None or self.span is None:

@@ -3,17 +3,24 @@
 A lot comes from the command line (``--lot``), from the grammar's ``Lot:`` line, or is
 the default rectangle. Every form ends as a valid shapely :class:`~shapely.geometry.Polygon`
 in plan coordinates ``(x, z)``, metres, exterior counter-clockwise in those coordinates
-(shapely's ``orient(sign=1)``), not self-intersecting, with positive area.
+(shapely's ``orient(sign=1)``), not self-intersecting, with positive area. The formats
+are documented for users in docs/lots.md.
 
-Accepted ``--lot`` forms (metres)::
+Accepted ``--lot`` forms::
 
-    14x10                                   a 14 m × 10 m rectangle at the origin
-    rectangle(14, 10)                       the same
-    "polygon((0,0),(14,0),(14,6),(8,6),(8,10),(0,10))"
-    footprint.geojson                       a GeoJSON Polygon, a Feature with one, or a
-                                            FeatureCollection holding exactly one polygon
-                                            (coordinates in metres, x east → plan x,
-                                            y north → plan z)
+    14x10  14x10m                           a 14 m × 10 m rectangle at the origin (a size
+                                            without a unit is metres)
+    1.4x1u                                  1.4 × 1 grammar units (× the grammar's units)
+    rectangle(14, 10)                       the same in metres; ``rectangle(1.4, 1)u``
+                                            in grammar units
+    "polygon((0,0),(14,0),(14,6),(8,6),(8,10),(0,10))"   corners, metres (``...)u``:
+                                            grammar units)
+    footprint.geojson                       a GeoJSON Polygon or MultiPolygon, a Feature
+                                            with one, or a FeatureCollection holding
+                                            exactly one polygon: WGS84 longitude/latitude,
+                                            a projected CRS, or local metres
+                                            (:mod:`cga.georeference`); squared when
+                                            nearly rectilinear (:mod:`cga.rectify`)
 
 The grammar's ``Lot: rectangle(w, d)`` / ``Lot: polygon(...)`` uses the same shapes in
 grammar units; :func:`lot_from_call` scales them by ``units``.
@@ -22,25 +29,33 @@ grammar units; :func:`lot_from_call` scales them by ``units``.
 from __future__ import annotations
 
 import json
+import math
 import re
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
+from shapely import affinity
 from shapely.geometry import MultiPolygon, Polygon, shape as geojson_shape
 from shapely.geometry.polygon import orient
 from shapely.validation import explain_validity
 
 from .errors import BudgetError, DerivationError, Span, UsageError, excerpt
+from .georeference import (Georeference, SourceFrame, frame_to_lonlat, source_frame,
+                           to_local_metres)
+from .model import Diagnostic
 from .provenance import note_input
+from .rectify import SNAP_TOLERANCE_DEG, edge_deviation, main_direction, square
 from .textfiles import read_input_bytes
 
 if TYPE_CHECKING:  # pragma: no cover
     from .sandbox import Sandbox
 
-__all__ = ["DEFAULT_LOT", "MAX_EXTENT", "MAX_LOT_VERTICES", "MAX_LOT_FILE_BYTES", "LOT_FORMATS", "validate_lot", "rectangle", "polygon_lot",
-           "parse_lot", "load_geojson", "lot_from_call"]
+__all__ = ["DEFAULT_LOT", "MAX_EXTENT", "MAX_LOT_VERTICES", "MAX_LOT_FILE_BYTES", "LOT_FORMATS",
+           "LotInput", "validate_lot", "rectangle", "polygon_lot", "read_lot", "parse_lot",
+           "read_geojson", "load_geojson", "lot_from_call"]
 
 DEFAULT_LOT = (14.0, 10.0)
 """Width (x) and depth (z) in metres of the lot used when neither CLI nor grammar gives one."""
@@ -57,13 +72,18 @@ and rasters grow with the corner count (a 200,000-corner lot ran for minutes).""
 MAX_LOT_FILE_BYTES = 10_000_000
 """Largest GeoJSON lot file read (10 MB)."""
 
-LOT_FORMATS = ('14x10 (width x depth in metres)', '"rectangle(14, 10)"',
-               '"polygon((0,0),(14,0),(14,10),(0,10))"', "a .geojson file with one polygon")
+LOT_FORMATS = ('14x10 or 14x10m (width x depth in metres)', '1.4x1u (in grammar units)',
+               '"rectangle(14, 10)"', '"polygon((0,0),(14,0),(14,10),(0,10))"',
+               "a .geojson file with one polygon (docs/lots.md)")
 """The ``--lot`` forms, as listed in error messages."""
 
+_PLAN_DECIMALS = 3
+"""A GeoJSON footprint's plan corners are rounded to this many decimals of a metre."""
+
 _NUMBER = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"
-_SIZE = re.compile(rf"^\s*({_NUMBER})\s*[xX×*]\s*({_NUMBER})\s*$")
-_CALL = re.compile(r"^\s*(rectangle|polygon)\s*\((.*)\)\s*$", re.IGNORECASE | re.DOTALL)
+_SIZE = re.compile(rf"^\s*({_NUMBER})\s*[xX×*]\s*({_NUMBER})\s*([mMuU])?\s*$")
+_CALL = re.compile(r"^\s*(rectangle|polygon)\s*\((.*)\)\s*([mu])?\s*$",
+                   re.IGNORECASE | re.DOTALL)
 _POINT = re.compile(rf"\(\s*({_NUMBER})\s*,\s*({_NUMBER})\s*\)")
 _RECT_ARGS = re.compile(rf"^\s*({_NUMBER})\s*,\s*({_NUMBER})\s*$")
 
@@ -117,9 +137,9 @@ def rectangle(width: float, depth: float) -> Polygon:
     """
     if not (width > 0 and depth > 0):
         raise UsageError(f"a rectangular lot needs positive width and depth, got "
-                         f"{width:g} x {depth:g}")
+                         f"{width:g} m x {depth:g} m")
     return validate_lot(Polygon([(0, 0), (width, 0), (width, depth), (0, depth)]),
-                      f"rectangle {width:g} x {depth:g}")
+                      f"rectangle {width:g} m x {depth:g} m")
 
 
 def polygon_lot(points: Sequence[Sequence[float]], what: str = "polygon") -> Polygon:
@@ -136,8 +156,48 @@ def polygon_lot(points: Sequence[Sequence[float]], what: str = "polygon") -> Pol
     return validate_lot(Polygon(coords), what)
 
 
+@dataclass(frozen=True)
+class LotInput:
+    """A lot as read from ``--lot``: the plan ``polygon`` (metres), the unit its numbers
+    were read in (``"m"`` or ``"grammar"``; ``unit_stated`` False when the text gave
+    none and metres were assumed), where it lies in the world (``georeference``, for a
+    GeoJSON file) and what reading it decided (``diagnostics``: CRS, squaring, holes)."""
+
+    polygon: Polygon
+    text: str
+    unit: Literal["m", "grammar"] = "m"
+    unit_stated: bool = True
+    georeference: Georeference | None = None
+    diagnostics: tuple[Diagnostic, ...] = ()
+
+    def unit_hint(self, units: float) -> str | None:
+        """A hint for a failed build when this lot's size may be in the wrong unit: a
+        plain ``WxD`` (metres by default) under a grammar whose units are not metres."""
+        if self.unit_stated or units == 1:
+            return None
+        minx, minz, maxx, maxz = self.polygon.bounds
+        width, depth = maxx - minx, maxz - minz
+        return (f"--lot {excerpt(self.text)} was read in metres (a {width:g} m × {depth:g} m "
+                f"lot, {self.polygon.area:g} m²), but this grammar's lengths are in units of "
+                f"{units:g} m; for {width:g} × {depth:g} grammar units "
+                f"({width * units:g} m × {depth * units:g} m) write --lot "
+                f"{width:g}x{depth:g}u, or --lot {width:g}x{depth:g}m to keep metres")
+
+
 def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polygon:
-    """The single polygon of a GeoJSON file (Polygon, Feature or FeatureCollection).
+    """The plan polygon of a GeoJSON lot file (see :func:`read_geojson`)."""
+    return read_geojson(path, sandbox=sandbox).polygon
+
+
+def read_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> LotInput:
+    """The single polygon of a GeoJSON file (Polygon, MultiPolygon of one part, Feature
+    or FeatureCollection), in plan metres, with its georeference.
+
+    The coordinates are read in the file's CRS (:func:`cga.georeference.source_frame`),
+    projected to a local transverse Mercator, turned so plan ``x`` follows the outline's
+    main direction, squared when every edge is within :data:`~cga.rectify.SNAP_TOLERANCE_DEG`
+    of a right angle, and moved so the bounding box starts at the plan origin. Holes
+    (courtyards) are filled. Each of these steps is a diagnostic.
 
     ``sandbox``, when given, holds the folders the file may lie in (:mod:`cga.sandbox`).
 
@@ -148,7 +208,8 @@ def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polyg
     ResourceAccessError
         The file lies outside ``sandbox``.
     UsageError
-        Not JSON, not GeoJSON, no polygon or more than one, or an invalid polygon.
+        Not JSON, not GeoJSON, no polygon or more than one, an unknown CRS, coordinates
+        that do not fit the CRS, or an invalid polygon.
     """
     file = Path(path)
     if sandbox is not None:
@@ -169,8 +230,90 @@ def load_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> Polyg
         raise UsageError(f"{file}: not a usable JSON file ({excerpt(str(error))})") from None
     polygons = _geojson_polygons(document, str(file))
     if len(polygons) != 1:
-        raise UsageError(f"{file}: expected exactly one polygon, found {len(polygons)}")
-    return validate_lot(polygons[0], str(file))
+        raise UsageError(f"{file}: expected exactly one polygon, found {len(polygons)}"
+                         + ("; a lot is one building: keep its outline only"
+                            if len(polygons) > 1 else ""))
+    return _georeferenced(document, polygons[0], str(file))
+
+
+def _georeferenced(document: Any, polygon: Polygon, where: str) -> LotInput:
+    """The lot of a GeoJSON ``polygon`` (source coordinates) in the plan frame."""
+    if polygon.is_empty or len(polygon.exterior.coords) < 4:
+        validate_lot(polygon, where)  # raises: fewer than 3 corners
+    rings = [np.asarray(polygon.exterior.coords)] + [np.asarray(r.coords)
+                                                     for r in polygon.interiors]
+    if not all(np.isfinite(ring).all() for ring in rings):
+        raise UsageError(f"{where}: every corner needs finite coordinates")
+    frame = source_frame(document, rings[0], where)
+    notes = []
+    if frame.crs is None:
+        local_crs, centre = None, None
+        notes.append(f"read {where} in local metres ({frame.why})")
+    else:
+        rings, local_crs, centre = to_local_metres(rings, frame, where)
+        notes.append(f"read {where} in {frame.name} ({frame.why}) and projected it to a "
+                     f"transverse Mercator centred at {_lon_lat_text(centre)}")
+    span = float(np.max(np.ptp(rings[0], axis=0)))
+    if span > MAX_EXTENT:
+        raise UsageError(f"{where}: the footprint spans {span:.4g} m; a lot must be at most "
+                         f"{MAX_EXTENT:,.0f} m across")
+    outline = Polygon(rings[0])
+    if len(rings) > 1:
+        holes = sum(Polygon(ring).area for ring in rings[1:])
+        notes.append(f"warning: the footprint has {len(rings) - 1} hole"
+                     f"{'s' if len(rings) > 2 else ''} ({holes:,.1f} m² in all); a lot is a "
+                     f"filled outline, so the building covers {'them' if len(rings) > 2 else 'it'}")
+    if not outline.is_valid or outline.area <= 0:
+        validate_lot(outline, where)  # raises, naming the fault
+    turn = main_direction(outline)
+    turned = affinity.rotate(outline, -turn, origin=(0, 0), use_radians=True)
+    if abs(math.degrees(turn)) >= 0.005:
+        notes.append(f"turned the plan so x runs along the outline's main direction, "
+                     f"{math.degrees(turn):.2f}° counter-clockwise from east")
+    squared = square(turned)
+    if squared is not None:
+        if squared.worst_deg > 1e-6:
+            notes.append(f"squared the outline: its {squared.edges} walls were at most "
+                         f"{squared.worst_deg:.2f}° off a right angle (tolerance "
+                         f"{SNAP_TOLERANCE_DEG:g}°); corners moved by at most "
+                         f"{squared.moved:.3f} m")
+        turned = squared.polygon
+    else:
+        notes.append(f"warning: the outline is not rectilinear (a wall {edge_deviation(turned):.1f}° "
+                     f"off a right angle, more than the {SNAP_TOLERANCE_DEG:g}° squaring "
+                     f"tolerance), so it is kept as drawn; make_floor cuts rooms parallel to "
+                     f"the plan axes")
+    minu, _, _, maxv = turned.bounds
+    # plan x = u - min u, plan z = max v - v: north (v) is -z in the y-up world; corners
+    # to the millimetre (no footprint is more precise), so the plan does not depend on
+    # the PROJ version's last digits
+    plan = Polygon(np.round(np.column_stack([
+        np.asarray(turned.exterior.coords)[:, 0] - minu,
+        maxv - np.asarray(turned.exterior.coords)[:, 1]]), _PLAN_DECIMALS))
+    origin = (minu * math.cos(turn) - maxv * math.sin(turn),
+              minu * math.sin(turn) + maxv * math.cos(turn))
+    georeference = Georeference(
+        source_crs=None if frame.crs is None else _crs_name(frame),
+        local_crs=local_crs, origin=origin,
+        origin_lonlat=None if local_crs is None else frame_to_lonlat(local_crs, *origin),
+        rotation_deg=math.degrees(turn))
+    diagnostics = tuple(
+        Diagnostic("warning", "lot", note.removeprefix("warning: ")) if note.startswith("warning: ")
+        else Diagnostic("info", "lot", note) for note in notes)
+    return LotInput(polygon=validate_lot(plan, where), text=where, georeference=georeference,
+                    diagnostics=diagnostics)
+
+
+def _crs_name(frame: SourceFrame) -> str:
+    """The CRS as ``AUTHORITY:CODE`` when it has one, else its name."""
+    authority = frame.crs.to_authority()
+    return ":".join(authority) if authority else frame.name
+
+
+def _lon_lat_text(point: tuple[float, float]) -> str:
+    lon, lat = point
+    return (f"{abs(lon):.6f}° {'E' if lon >= 0 else 'W'}, "
+            f"{abs(lat):.6f}° {'N' if lat >= 0 else 'S'}")
 
 
 def _geojson_polygons(document: Any, where: str) -> list[Polygon]:
@@ -217,7 +360,8 @@ def _check_positions(coordinates: Any, kind: str, where: str) -> None:
             stack.extend((item, level + 1) for item in value)
             continue
         if len(value) != 2:
-            raise UsageError(f"{where}: a lot position must be [x, y] in metres, got "
+            raise UsageError(f"{where}: a lot position must be [x, y] (longitude, latitude "
+                             f"or easting, northing), got "
                              f"{len(value)} coordinates"
                              + (" (a lot is a plan footprint: drop the height)"
                                 if len(value) == 3 else ""))
@@ -230,29 +374,32 @@ def _check_positions(coordinates: Any, kind: str, where: str) -> None:
                               f"simplify the footprint (docs/limits.md)")
 
 
-def _parse_call(name: str, inner: str, text: str) -> Polygon:
+def _parse_call(name: str, inner: str, text: str, scale: float) -> Polygon:
     if name.lower() == "rectangle":
         match = _RECT_ARGS.match(inner)
         if not match:
             raise UsageError(f"--lot {excerpt(text)}: rectangle takes two numbers, e.g. "
                              f"rectangle(14, 10)")
-        return rectangle(float(match.group(1)), float(match.group(2)))
+        return rectangle(float(match.group(1)) * scale, float(match.group(2)) * scale)
     points = _POINT.findall(inner)
     leftover = _POINT.sub("", inner).replace(",", "").strip()
     if not points or leftover:
         raise UsageError(f"--lot {excerpt(text)}: polygon takes corner points, e.g. "
                          f"polygon((0,0),(14,0),(14,10),(0,10))")
-    return polygon_lot([(float(x), float(z)) for x, z in points], f"--lot {excerpt(text)}")
+    return polygon_lot([(float(x) * scale, float(z) * scale) for x, z in points],
+                       f"--lot {excerpt(text)}")
 
 
-def parse_lot(text: str, *, base_dir: str | Path | None = None,
-              sandbox: "Sandbox | None" = None) -> Polygon:
-    """Parse a ``--lot`` value (see the module docstring for the forms).
+def read_lot(text: str, *, units: float = 1.0, base_dir: str | Path | None = None,
+             sandbox: "Sandbox | None" = None) -> LotInput:
+    """Read a ``--lot`` value (see the module docstring for the forms).
 
     Parameters
     ----------
     text:
         The option's value.
+    units:
+        Metres per grammar unit, for sizes written with the ``u`` suffix.
     base_dir:
         Folder a relative GeoJSON path is taken from (default: the working directory).
     sandbox:
@@ -265,18 +412,34 @@ def parse_lot(text: str, *, base_dir: str | Path | None = None,
     ResourceNotFoundError
         A ``.geojson``/``.json`` file that does not exist.
     """
-    match = _SIZE.match(text)
+    match = _SIZE.match(text) or _CALL.match(text)
     if match:
-        return rectangle(float(match.group(1)), float(match.group(2)))
-    match = _CALL.match(text)
-    if match:
-        return _parse_call(match.group(1), match.group(2), text)
+        suffix = (match.group(3) or "").lower()
+        scale = units if suffix == "u" else 1.0
+        try:
+            if match.re is _SIZE:
+                polygon = rectangle(float(match.group(1)) * scale, float(match.group(2)) * scale)
+            else:
+                polygon = _parse_call(match.group(1), match.group(2), text, scale)
+        except UsageError as error:
+            if suffix != "u":
+                raise
+            raise UsageError(f"{error} (--lot {excerpt(text)} read in grammar units of "
+                             f"{units:g} m)") from None
+        return LotInput(polygon=polygon, text=text, unit="grammar" if suffix == "u" else "m",
+                        unit_stated=bool(suffix))
     if text.lower().endswith((".geojson", ".json")):
         path = Path(text)
         if not path.is_absolute() and base_dir is not None:
             path = Path(base_dir) / path
-        return load_geojson(path, sandbox=sandbox)
+        return read_geojson(path, sandbox=sandbox)
     raise UsageError(f"--lot {excerpt(text)}: {_expected()}")
+
+
+def parse_lot(text: str, *, units: float = 1.0, base_dir: str | Path | None = None,
+              sandbox: "Sandbox | None" = None) -> Polygon:
+    """The plan polygon of a ``--lot`` value (see :func:`read_lot`)."""
+    return read_lot(text, units=units, base_dir=base_dir, sandbox=sandbox).polygon
 
 
 def lot_from_call(name: str, args: Sequence[Any], span: Span, units: float) -> Polygon:
@@ -307,6 +470,7 @@ def lot_from_call(name: str, args: Sequence[Any], span: Span, units: float) -> P
                                       "polygon((0,0),(14,0),(14,10),(0,10))", span)
             return polygon_lot([(number(x), number(z)) for x, z in args], "Lot: polygon")
     except (UsageError, BudgetError) as error:
-        raise DerivationError(str(error), span) from None
+        read = "" if units == 1 else f" (Lot: is in grammar units of {units:g} m)"
+        raise DerivationError(f"{error}{read}", span) from None
     raise DerivationError(f"Lot: unknown shape '{name}'", span,
                           hint="use rectangle(width, depth) or polygon((x,z), ...)")

@@ -16,14 +16,18 @@ import math
 import time
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from shapely.geometry import Polygon
 
-from .errors import ExportError, NoSolutionError, SourceError, UsageError
-from .evaluator import DEFAULT_MAX_DEPTH, Evaluator, check_max_depth
+from .errors import DerivationError, ExportError, NoSolutionError, SourceError, UsageError
+from .evaluator import DEFAULT_MAX_DEPTH, Evaluator, check_max_depth, evaluate_units
+from .model import Diagnostic
 from .registry import OperationRegistry
 from .scene import Scene
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .lot import LotInput
 
 __all__ = ["MAX_ROBOT_RADIUS", "STAGES", "build", "check_grammar", "default_out_dir", "run_checks",
            "export_scene"]
@@ -195,6 +199,21 @@ def _input_files(*names: str | None) -> list[Path]:
     return files
 
 
+def _lot_notes(lot: "LotInput | None", units: float) -> list[Diagnostic]:
+    """What reading ``--lot`` decided, and the unit of a plain size when the grammar's
+    units are not metres (so the default is visible)."""
+    if lot is None:
+        return []
+    notes = list(lot.diagnostics)
+    if not lot.unit_stated and units != 1:
+        minx, minz, maxx, maxz = lot.polygon.bounds
+        notes.append(Diagnostic("info", "lot", (
+            f"--lot {lot.text} has no unit, so it is metres ({maxx - minx:g} m × "
+            f"{maxz - minz:g} m) although the grammar's units = {units:g}; write "
+            f"{lot.text.strip()}m to say so or {lot.text.strip()}u for grammar units")))
+    return notes
+
+
 def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None = None,
           units: float | None = None, out_dir: str | Path | None = None,
           formats: Sequence[str] = ("glb",), physics: bool = True, robot_radius: float = 0.25,
@@ -276,19 +295,30 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
             with progress.stage("parse", f"parsing {path.name}…"):
                 grammar = parse(text, str(path))
             lot_text = lot if isinstance(lot, str) else None
+            lot_input = None
+            build_units = units if units is not None else evaluate_units(grammar)
             if lot is not None:
-                from .lot import parse_lot, validate_lot
+                from .lot import LotInput, read_lot, validate_lot
 
-                lot = (parse_lot(lot, sandbox=sandbox.with_working_directory())
-                       if isinstance(lot, str) else validate_lot(lot, "lot"))
+                lot_input = (read_lot(lot, units=build_units,
+                                      sandbox=sandbox.with_working_directory())
+                             if isinstance(lot, str)
+                             else LotInput(validate_lot(lot, "lot"), text="lot"))
             # one model library per build: add_furniture sizes items with it, the
             # meshing layer poses the same loaded models; both read only in the sandbox
             library = grammar_library(path.parent, sandbox)
             with progress.stage("derive", "deriving the shape tree…"):
-                derivation = Evaluator(grammar, seed=seed, units=units, operations=operations,
-                                       max_depth=max_depth, base_dir=path.parent,
-                                       strict=strict, library=library,
-                                       sandbox=sandbox, overrides=overrides).derive(lot)
+                try:
+                    derivation = Evaluator(
+                        grammar, seed=seed, units=units, operations=operations,
+                        max_depth=max_depth, base_dir=path.parent, strict=strict,
+                        library=library, sandbox=sandbox, overrides=overrides,
+                    ).derive(None if lot_input is None else lot_input.polygon)
+                except (DerivationError, NoSolutionError) as error:  # what a lot's size can cause
+                    hint = None if lot_input is None else lot_input.unit_hint(build_units)
+                    if hint is not None:
+                        error.add_hint(hint)
+                    raise
             timings.update(derivation.timings)
             from .appearance import appearance_from
             from .building import stack_storeys
@@ -298,8 +328,10 @@ def build(grammar_path: str | Path, *, seed: int = 0, lot: str | Polygon | None 
 
             scene = Scene(name=path.stem, seed=seed, units=derivation.units,
                           terminals=stack_storeys(derivation.terminals), source=path,
-                          diagnostics=list(derivation.diagnostics), timings=timings,
-                          library=library, appearance=appearance)
+                          diagnostics=[*_lot_notes(lot_input, build_units),
+                                       *derivation.diagnostics],
+                          timings=timings, library=library, appearance=appearance,
+                          georeference=None if lot_input is None else lot_input.georeference)
             with progress.stage("meshing", "meshing…"):
                 scene.nodes  # noqa: B018 - made once here, timed; checks and exporters reuse them
             if physics:

@@ -23,6 +23,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from cga.appearance import Appearance, Light, Material
     from cga.difficulty import DifficultyReport
+    from cga.georeference import Georeference
     from cga.operations.furniture.library import ModelLibrary
 
     from .doors import DoorLeaf
@@ -114,6 +115,7 @@ class Scene:
     meshing layer poses its models. ``appearance`` says which materials and lights the
     build has (:mod:`cga.appearance`; None: the shipped tables, neutral). :attr:`nodes`
     are the build's meshes, made once, and :attr:`lights` its ceiling lights.
+    ``georeference`` places the plan in the world when the lot came from a GeoJSON file.
     """
 
     name: str
@@ -127,6 +129,7 @@ class Scene:
     difficulty: "DifficultyReport | None" = None
     library: "ModelLibrary | None" = None
     appearance: "Appearance | None" = None
+    georeference: "Georeference | None" = None
     _nodes: tuple[SceneNode, ...] | None = field(default=None, repr=False, compare=False)
     _lights: tuple["Light", ...] | None = field(default=None, repr=False, compare=False)
 

@@ -107,6 +107,8 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "name": scene.name,
         "seed": int(scene.seed),
         "units": float(scene.units),
+        "georeference": (None if scene.georeference is None
+                         else _clean(scene.georeference.to_dict(), "georeference")),
         "frame": {
             "length_unit": "m",
             "up": "+y",
