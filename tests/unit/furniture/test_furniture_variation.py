@@ -201,7 +201,9 @@ def test_disorder_outside_the_unit_interval_is_refused(room_plan, library, rules
 
 def test_a_row_sets_its_own_disorder(room_plan, library, rules_dir, tmp_path):
     text = (rules_dir / "furniture_office.csv").read_text(encoding="utf-8").splitlines()
-    header, rows = text[0] + ";disorder", text[1:]
+    comments = [line for line in text if line.startswith("#")]  # the `# units: m` line
+    text = [line for line in text if not line.startswith("#")]
+    header, rows = "\n".join([*comments, text[0] + ";disorder"]), text[1:]
     rows = [r + (";1" if r.split(";")[:2] == ["Meetingroom", "chair2"] else ";")
             for r in rows]
     table = tmp_path / "office.csv"
