@@ -138,16 +138,23 @@ def _pbr(material: Material) -> Any:
 
 def _give_every_vertex_a_normal(mesh: Any) -> None:
     """Replace averaged vertex normals of (nearly) zero length by the normal of one of
-    the vertex's faces. A vertex where faces facing opposite ways meet (a stair's tread
-    edge on its landing) averages to nothing, which glTF forbids (the Khronos validator's
-    ACCESSOR_VECTOR3_NON_UNIT)."""
+    the vertex's faces that has one (else +y). A vertex where faces facing opposite ways
+    meet (a stair's tread edge on its landing) averages to nothing, and one of only
+    degenerate (zero-area) triangles has no normal at all, which glTF forbids (the
+    Khronos validator's ACCESSOR_VECTOR3_NON_UNIT)."""
     if len(mesh.faces) == 0:
         return
     normals = np.array(mesh.vertex_normals)
     flat = np.linalg.norm(normals, axis=1) < 0.5
     if flat.any():
-        first_face = mesh.vertex_faces[flat, 0]
-        normals[flat] = mesh.face_normals[np.maximum(first_face, 0)]
+        faces = np.asarray(mesh.vertex_faces[flat])  # padded with -1
+        face_normals = np.vstack([mesh.face_normals, [[0.0, 0.0, 0.0]]])
+        candidates = face_normals[faces]  # -1 picks the zero row
+        usable = np.linalg.norm(candidates, axis=2) > 0.5
+        first = np.argmax(usable, axis=1)
+        chosen = candidates[np.arange(len(faces)), first]
+        chosen[~usable.any(axis=1)] = (0.0, 1.0, 0.0)
+        normals[flat] = chosen
         mesh.vertex_normals = normals
 
 

@@ -25,7 +25,7 @@ from PIL import Image
 from cga.fsutil import atomic_write
 from cga.scene import Scene, SceneNode
 
-from .palette import face_colors, node_face_colors
+from .palette import face_colors, node_color, node_face_colors
 
 __all__ = ["render_view", "export_view"]
 
@@ -43,22 +43,30 @@ def _camera(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
     return np.vstack([right, up, to_viewer])
 
 
-def _cut(mesh: trimesh.Trimesh, height: float) -> trimesh.Trimesh | None:
-    """The part of ``mesh`` below ``height`` (capped so walls look solid)."""
+def _cut(mesh: trimesh.Trimesh, height: float
+         ) -> tuple[trimesh.Trimesh, np.ndarray | None] | None:
+    """The part of ``mesh`` below ``height`` (capped so walls look solid), and for each of
+    its triangles the triangle of ``mesh`` it comes from (-1 for a cap; None when that is
+    not known)."""
     if mesh.bounds[1][1] <= height:
-        return mesh
+        return mesh, np.arange(len(mesh.faces))
     if mesh.bounds[0][1] >= height:
         return None
     if not mesh.is_watertight:
-        return mesh.slice_plane([0.0, height, 0.0], [0.0, -1.0, 0.0])
+        return mesh.slice_plane([0.0, height, 0.0], [0.0, -1.0, 0.0]), None
     solid = manifold3d.Manifold(manifold3d.Mesh(
         vert_properties=np.asarray(mesh.vertices, dtype=np.float32),
         tri_verts=np.asarray(mesh.faces, dtype=np.uint32)))
     cut = solid.trim_by_plane((0.0, -1.0, 0.0), -height).to_mesh()
     if len(cut.tri_verts) == 0:
         return None
-    return trimesh.Trimesh(vertices=np.asarray(cut.vert_properties)[:, :3],
-                           faces=np.asarray(cut.tri_verts), process=False)
+    vertices = np.asarray(cut.vert_properties)[:, :3]
+    faces = np.asarray(cut.tri_verts)
+    # manifold gives each triangle the index of the input triangle it comes from
+    # (face_id); the cap it adds lies in the cutting plane
+    source = np.asarray(cut.face_id, dtype=np.int64).copy()
+    source[np.all(np.abs(vertices[faces][:, :, 1] - height) < 1e-5, axis=1)] = -1
+    return trimesh.Trimesh(vertices=vertices, faces=faces, process=False), source
 
 
 def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):
@@ -66,11 +74,16 @@ def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):
     for node in nodes:
         if node.kind in ("ceiling", "roof"):
             continue
-        mesh = node.mesh if cut_y is None else _cut(node.mesh, cut_y)
-        if mesh is None or len(mesh.faces) == 0:
+        cut = (node.mesh, np.arange(len(node.mesh.faces))) if cut_y is None else _cut(node.mesh, cut_y)
+        if cut is None or len(cut[0].faces) == 0:
             continue
+        mesh, source = cut
         tris.append(np.asarray(mesh.vertices)[np.asarray(mesh.faces)])
-        colors.append(node_face_colors(node) if mesh is node.mesh else face_colors(mesh, node.kind))
+        if source is None:
+            colors.append(face_colors(mesh, node.kind))
+        else:  # the node's own colours; caps in its kind's colour (a section's cut face)
+            own = np.vstack([node_face_colors(node), [node_color(node.kind)]])
+            colors.append(own[source])
     if not tris:
         return np.zeros((0, 3, 3)), np.zeros((0, 3))
     return np.concatenate(tris), np.concatenate(colors)
