@@ -7,7 +7,9 @@ Here ``disorder`` d scales, for every movable item (``isMovable``, by default th
 chairs; :meth:`.rules.FurnitureRule.movable`):
 
 * a turn by a free angle drawn uniformly in ``[-d, d]`` × :data:`MAX_YAW`;
-* a shift drawn uniformly in the disc of radius d × :data:`MAX_SHIFT`.
+* a shift drawn uniformly in the disc of radius d × :data:`MAX_SHIFT`; for a child
+  (a chair at its table or desk) in the half of it away from its parent, as chairs get
+  pulled out, not pushed in.
 
 The disturbed pose must keep every guarantee of a tidy one (docs/furniture.md): it is
 tested by the room's :class:`~.layout.Layout` with the item's body and clearance boxes
@@ -115,13 +117,18 @@ def disturb(layout: Layout, specs: Sequence[ItemSpec], movable: set[str],
             continue
         parent = layout.placed.get(spec.rule.pair_with) if spec.rule.pair_with else None
         tidy = entry[1]
+        # a child is pulled away from its parent (a chair from its table), anything else
+        # shifts any way
+        back = np.negative(front_vector(tidy.rotation))
+        away, spread = ((math.atan2(back[1], back[0]), math.pi / 2) if parent is not None
+                        else (0.0, math.pi))
         layout.remove(spec.name)
         chosen = None
         for scale in _SCALES:
             for _ in range(SAMPLES):
                 yaw = noise * scale * MAX_YAW * float(rng.uniform(-1.0, 1.0))
                 radius = noise * scale * MAX_SHIFT * math.sqrt(float(rng.random()))
-                angle = float(rng.uniform(0.0, 2 * math.pi))
+                angle = away + float(rng.uniform(-spread, spread))
                 pose = Pose(tidy.x + radius * math.cos(angle), tidy.z + radius * math.sin(angle),
                             tidy.rotation, yaw)
                 if parent is not None and not _keeps_pair(spec, pose, *parent):
