@@ -209,6 +209,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
                           metadata=json_safe({"kind": "building", "name": scene.name,
                                               "seed": scene.seed}))
     groups = _group_extras(scene)
+    made: set[str] = set()
     seen: set[str] = set()
     meshes: dict[str, str] = {}
     instances = instance_ids(nodes)
@@ -224,7 +225,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
                                 "instance_id": instances[node.path]})
         except TypeError as error:
             raise ExportError(f"node {node.path!r}: {error}") from None
-        parent = _parent(tm_scene, node.path, root, groups)
+        parent = _parent(tm_scene, node.path, root, groups, made)
         pivot = node_pivot(node)
         pieces = _local_meshes(node, pivot)
         key = _mesh_key(pieces)
@@ -236,7 +237,8 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
                 tm_scene.geometry[f"{meshes[key]}{_PRIMITIVE}{k}"] = piece
         tm_scene.graph.update(frame_from=parent, frame_to=node.path, matrix=pivot,
                               geometry=meshes[key], metadata=extras)
-    lights = _add_lights(tm_scene, scene, root, groups)
+        made.add(node.path)
+    lights = _add_lights(tm_scene, scene, root, groups, made)
     tm_scene.metadata.update(json_safe({"generator": "cga", "name": scene.name,
                                         "seed": scene.seed, "units": "metres", "up": "y"}))
     return tm_scene.export(file_type="glb", include_normals=True, unitize_normals=True,
@@ -249,13 +251,13 @@ mesh per geometry, so a node's further materials are geometries ``<mesh>@1``, ..
 :func:`_finish_tree` moves into the node's mesh as primitives."""
 
 
-def _add_lights(tm_scene: Any, scene: Scene, root: str,
-                groups: Mapping[str, dict[str, Any]]) -> list[dict[str, Any]]:
+def _add_lights(tm_scene: Any, scene: Scene, root: str, groups: Mapping[str, dict[str, Any]],
+                made: set[str]) -> list[dict[str, Any]]:
     """A node per ceiling light (``floor0/room3_Office/light0``) under its room, pointing
     at its ``KHR_lights_punctual`` light; returns the lights' definitions."""
     out = []
     for k, light in enumerate(scene.lights):
-        parent = _parent(tm_scene, light.name, root, groups)
+        parent = _parent(tm_scene, light.name, root, groups, made)
         matrix = np.eye(4)
         matrix[:3, 3] = light.position
         extras = json_safe({"kind": "light", "floor": light.floor, "room": light.room,
@@ -293,13 +295,19 @@ def _finish_tree(tree: dict[str, Any], lights: list[dict[str, Any]]) -> None:
         tree["extensionsUsed"] = sorted(used)
 
 
-def _parent(tm_scene: Any, path: str, root: str, groups: Mapping[str, dict[str, Any]]) -> str:
-    """The group node above ``path``, made (with its own ancestors) when missing."""
+def _parent(tm_scene: Any, path: str, root: str, groups: Mapping[str, dict[str, Any]],
+            made: set[str]) -> str:
+    """The group node above ``path``, made (with its own ancestors) when missing.
+
+    ``made`` holds the groups made so far: asking trimesh's graph for its nodes instead
+    re-hashes every transform after each update, quadratic in the scene's nodes (a
+    300 m lot's glb took minutes)."""
     parent = root
     parts = path.split("/")
     for depth in range(1, len(parts)):
         group = "/".join(parts[:depth])
-        if group not in tm_scene.graph.nodes:
+        if group not in made:
+            made.add(group)
             extras = groups.get(group, {"kind": "group"})
             tm_scene.graph.update(frame_from=parent, frame_to=group, matrix=np.eye(4),
                                   metadata=json_safe(extras))
