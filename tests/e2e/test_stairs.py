@@ -20,6 +20,7 @@ import trimesh
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.ops import unary_union
 
+from glb_nodes import mesh_node_names, node_mesh
 from items import item_info
 
 from cga.checks.navigability import check_navigability
@@ -48,7 +49,7 @@ def built(request, tmp_path_factory):
 
 
 def _mesh(glb: trimesh.Scene, path: str) -> trimesh.Trimesh:
-    return glb.geometry[glb.graph[path][1]].copy().apply_transform(glb.graph[path][0])
+    return node_mesh(glb, path)
 
 
 def test_one_stair_per_pair_of_consecutive_floors(built):
@@ -114,9 +115,9 @@ def test_step_dimensions_are_within_the_parameters(built):
 
 
 def test_a_roof_and_rails(built):
-    data, glb, _, _ = built
+    data, _, out, name = built
     top = max(f["index"] for f in data["floors"])
-    names = set(glb.graph.nodes_geometry)
+    names = mesh_node_names(out / f"{name}.glb")
     assert f"floor{top}/roof" in names
     for stair in data["stairs"]:
         assert f"floor{stair['floors'][1]}/stairwell{stair['id']}/rail" in names
