@@ -20,7 +20,7 @@ from pathlib import Path
 
 from .fsutil import atomic_write
 
-__all__ = ["cache_root", "digest", "read_entry", "write_entry"]
+__all__ = ["cache_root", "digest", "has_entry", "read_entry", "write_entry"]
 
 
 def cache_root() -> Path:
@@ -49,6 +49,11 @@ def read_entry(kind: str, key: str, suffix: str = "") -> bytes | None:
         return _path(kind, key, suffix).read_bytes()
     except OSError:
         return None
+
+
+def has_entry(kind: str, key: str, suffix: str = "") -> bool:
+    """Whether an entry is stored, without reading it."""
+    return _path(kind, key, suffix).is_file()
 
 
 def write_entry(kind: str, key: str, data: bytes, suffix: str = "") -> None:

@@ -9,10 +9,9 @@ build through the shared model library), converts the table's distances to metre
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from cga.errors import DerivationError, ResourceNotFoundError, RuleTableError
 from cga.model import Diagnostic, FloorPlan
@@ -23,7 +22,12 @@ from cga.operation import CheckContext, Child, Operation, OperationContext, Para
 from .furniture.library import ModelLibrary, grammar_library
 from .furniture.passage import PASSAGE_WIDTH
 from .furniture.rules import FurnitureRule, FurnitureRules, load_furniture_rules
-from .furniture.solver import furnish_plan
+
+if TYPE_CHECKING:
+    import numpy as np
+
+# The solver (layout, clearances, passage, steering) is imported by ``furnish``, not
+# here: ``cga check`` loads this module for its parameters, value and file checks only.
 
 __all__ = ["AddFurniture", "LIBRARY_CACHE_KEY", "MAX_STEERING_ITERATIONS", "furnish"]
 
@@ -116,7 +120,9 @@ class AddFurniture(Operation):
         if not isinstance(args["rules"], str):
             return
         rules = _rules(ctx, Path(ctx.resolve(args["rules"], "rules")))
-        _models(rules, _library(ctx))
+        library = _library(ctx)
+        for rule in rules:
+            _model(rule, library.check, rules.file)
 
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
         plan = shape.plan
@@ -141,6 +147,8 @@ def furnish(plan: FloorPlan, rules: FurnitureRules, library: ModelLibrary,
             clearance_tries: int, passage_width: float, disorder: float = 0.0) -> FloorPlan:
     """``plan`` with furniture from a parsed table (every model must be in ``library``);
     the operation and :func:`cga.authoring.furnish_floor` both call this."""
+    from .furniture.solver import furnish_plan
+
     models = _models(rules, library)
     furniture, diagnostics = furnish_plan(plan, rules.scaled(units), models, rng,
                                           steering_iterations=steering_iterations,
@@ -177,9 +185,11 @@ def _library(ctx: OperationContext | CheckContext) -> ModelLibrary:
     return library
 
 
-def _model(rule: FurnitureRule, library: ModelLibrary, file: str) -> Any:
+def _model(rule: FurnitureRule, lookup: Callable[[str], Any], file: str) -> Any:
+    """``lookup(rule.name)`` (the library's ``get`` or ``check``), a missing model
+    reported at the rule's row."""
     try:
-        return library.get(rule.name)
+        return lookup(rule.name)
     except ResourceNotFoundError as error:
         looked = ", ".join(error.searched)
         raise RuleTableError(f"no model for '{rule.name}' (looked for "
@@ -192,7 +202,7 @@ def _models(rules: FurnitureRules, library: ModelLibrary
     """Rule name → (model name, size in metres); every model must exist."""
     models = {}
     for rule in rules:
-        model = _model(rule, library, rules.file)
+        model = _model(rule, library.get, rules.file)
         if not rule.is_detail:
             models[rule.name] = (model.name, model.size)
     return models

@@ -19,7 +19,7 @@ without one.
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
@@ -30,19 +30,14 @@ from cga.randomness import stream
 from cga.shape import Mass, Shape
 
 from cga.operation import Child, Operation, OperationContext, Param, is_number
-from .floorplan.assemble import plan_from_dcel
-from .floorplan.bsp import FixedFace, Partition, partition
-from .floorplan.layout import LayoutRecipe
-from .floorplan.openings import window_shortfall
-from .floorplan.treemap import thesis_partition
-from .floorplan.circulation import (CORRIDOR_MODES, CirculationError, CorridorSpec,
-                                    circulation_faces)
-from .floorplan.errors import PartitionError
-from .floorplan.tiling import tile_with_fixed_faces
-from .roomtyping.doors import DOOR_MARGIN, door_spans
-from .roomtyping.room_graph import door_sites
-from .stairs import STAIR_KINDS, StairParams, core_for_storey
-from .stairs.access import core_door_spans
+
+if TYPE_CHECKING:
+    from .floorplan.bsp import FixedFace, Partition
+    from .floorplan.circulation import CorridorSpec
+
+# The partition, circulation, stair and door modules are imported where a floor is made
+# (``apply`` and its helpers), not here: ``cga check`` loads this module for its
+# parameters and value checks only, and those imports are a fifth of its start-up.
 
 __all__ = ["MIN_CORRIDOR_WIDTH", "MakeFloor", "floor_settings"]
 
@@ -122,6 +117,16 @@ class MakeFloor(Operation):
             raise DerivationError(f"min_room_area must not be negative, got {min_area / units ** 2:g}")
 
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
+        from .floorplan.assemble import plan_from_dcel
+        from .floorplan.bsp import partition
+        from .floorplan.circulation import CirculationError, circulation_faces
+        from .floorplan.errors import PartitionError
+        from .floorplan.layout import LayoutRecipe
+        from .floorplan.openings import window_shortfall
+        from .floorplan.tiling import tile_with_fixed_faces
+        from .floorplan.treemap import thesis_partition
+        from .roomtyping.doors import DOOR_MARGIN
+
         self.check_values(args, ctx.units)
         mass = shape.geometry
         if not isinstance(mass, Mass) or mass.height <= 0:
@@ -213,6 +218,8 @@ def _rooms_made(result: Partition, core: StairCore | None) -> int:
 def _core(shape: Shape, args: dict[str, Any], ctx: OperationContext, footprint: Polygon,
           height: float, settings: FloorSettings, corridors: list[Polygon]) -> StairCore | None:
     """The building's stair core when this storey is one of a stack of several."""
+    from .stairs import STAIR_KINDS, StairParams, core_for_storey
+
     storeys = int(shape.attrs.get("floors", 1))
     args = {**{p.name: p.default for p in MakeFloor.params if p.name.startswith(("stair", "max_", "min_"))},
             **args}  # callers of apply() that predate the stair keywords
@@ -245,6 +252,8 @@ def _core_face(core: StairCore, fixed: list[FixedFace]) -> FixedFace:
     DerivationError
         The building's core (placed by its first storey) overlaps this storey's corridor.
     """
+    from .floorplan.bsp import FixedFace
+
     for face in fixed:
         if Polygon(face.polygon).intersection(core.polygon).area > 1e-9:
             raise DerivationError(
@@ -262,6 +271,10 @@ def _bounds(polygon: Polygon) -> str:
 
 def _core_has_door(plan: FloorPlan) -> bool:
     """Whether a door fits between the stair landing and a neighbouring room."""
+    from .roomtyping.doors import door_spans
+    from .roomtyping.room_graph import door_sites
+    from .stairs.access import core_door_spans
+
     spans = core_door_spans(plan, door_spans(plan))
     sites = door_sites(plan, spans, plan.settings.door_width)
     return any(plan.core_room in pair for pair in sites.inner)
@@ -269,6 +282,8 @@ def _core_has_door(plan: FloorPlan) -> bool:
 
 def _corridor(args: dict[str, Any], units: float) -> CorridorSpec:
     """The corridor options, checked (docs/architecture.md, "Floor plans")."""
+    from .floorplan.circulation import CORRIDOR_MODES, CorridorSpec
+
     mode = str(args["corridor"]).lower()
     if mode not in CORRIDOR_MODES:
         raise DerivationError(f"corridor must be one of {', '.join(map(repr, CORRIDOR_MODES))}, "

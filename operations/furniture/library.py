@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
-from cga.cache import digest, read_entry, write_entry
+from cga.cache import digest, has_entry, read_entry, write_entry
 from cga.errors import CGAError, ResourceNotFoundError, excerpt
 from cga.provenance import note_input
 from cga.resources import is_regular_file, shipped_dir
@@ -272,6 +272,23 @@ class ModelLibrary:
             self._by_name[key] = model
         return model
 
+    def check(self, name: str) -> Path:
+        """The file :meth:`get` loads for ``name``, known to load, without loading it
+        when it need not: a file whose bytes the on-disk cache holds parsed before (only
+        valid files are stored), so ``cga check`` reads no arrays.
+
+        Raises
+        ------
+        The errors of :meth:`get`.
+        """
+        model = self._by_name.get(normalize_name(name))
+        if model is not None:
+            return model.path
+        path = self.find(name)
+        if path not in self._by_path and not _is_cached(path):
+            self.get(name)
+        return path
+
     def find(self, name: str) -> Path:
         """The file that :meth:`get` loads for ``name`` (see the class notes).
 
@@ -352,7 +369,7 @@ def load_model(path: Path) -> FurnitureModel:
         data = path.read_bytes()
     except OSError as exc:
         raise ModelFileError(path, f"cannot read the OBJ file ({exc.strerror})") from None
-    key = digest(_CACHE_FORMAT, version("trimesh"), data)
+    key = _cache_key(data)
     record = _from_cache(read_entry(_CACHE_KIND, key, ".npz"))
     if record is None:
         text = _obj_text(path, data)
@@ -362,6 +379,20 @@ def load_model(path: Path) -> FurnitureModel:
     geometry, density, color = record
     return FurnitureModel(name=normalize_name(path.stem), size=geometry.size,
                           geometry=geometry, color=color, density=density, path=path)
+
+
+def _cache_key(data: bytes) -> str:
+    """The on-disk cache key of a model file's bytes (a new trimesh parses anew)."""
+    return digest(_CACHE_FORMAT, version("trimesh"), data)
+
+
+def _is_cached(path: Path) -> bool:
+    """Whether the on-disk cache holds ``path``'s current bytes, parsed."""
+    try:
+        data = path.read_bytes()
+    except OSError:
+        return False
+    return has_entry(_CACHE_KIND, _cache_key(data), ".npz")
 
 
 _Record = tuple[ModelGeometry, float, tuple[float, float, float]]

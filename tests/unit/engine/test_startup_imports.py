@@ -13,6 +13,9 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[3]
 HEAVY = ("trimesh", "scipy", "pybullet", "manifold3d", "PIL", "networkx", "rich")
+LAYOUT = ("cga.operations.furniture.solver", "cga.operations.floorplan.bsp",
+          "cga.operations.floorplan.circulation")
+"""Layout code that only a build runs: a check loads the operations for their checks."""
 
 _PROBE = """
 import json, sys
@@ -21,18 +24,19 @@ try:
     main({args!r})
 except SystemExit:
     pass
-print(json.dumps(sorted(m for m in sys.modules if m.split('.')[0] in {heavy!r})),
-      file=sys.stderr)
+print(json.dumps(sorted(m for m in sys.modules
+                        if m.split('.')[0] in {heavy!r} or m in {layout!r})), file=sys.stderr)
 """
 
 
 def _imported(args: list[str], cache: Path) -> set[str]:
-    """Top-level heavy modules a fresh process imported while running ``cga args``."""
+    """Top-level heavy modules, and the :data:`LAYOUT` modules, a fresh process imported
+    while running ``cga args``."""
     env = dict(os.environ, PYTHONPATH=str(ROOT), CGA_CACHE_DIR=str(cache))
-    done = subprocess.run([sys.executable, "-c", _PROBE.format(args=args, heavy=HEAVY)],
+    done = subprocess.run([sys.executable, "-c", _PROBE.format(args=args, heavy=HEAVY, layout=LAYOUT)],
                           cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
     last = done.stderr.strip().splitlines()[-1]
-    return {name.split(".")[0] for name in json.loads(last)}
+    return {name if name in LAYOUT else name.split(".")[0] for name in json.loads(last)}
 
 
 def test_help_imports_no_heavy_library(tmp_path):

@@ -83,3 +83,22 @@ def test_an_unwritable_cache_only_costs_a_parse(tmp_path, monkeypatch):
     blocker.write_text("not a folder")
     monkeypatch.setenv("CGA_CACHE_DIR", str(blocker))
     assert load_model(SHIPPED / "chair.obj").name == "chair"
+
+
+def test_check_reads_no_arrays_for_a_cached_file(cache, monkeypatch):
+    library.ModelLibrary([SHIPPED]).get("chair")  # fills the on-disk cache
+    monkeypatch.setattr(library, "_from_cache", lambda data: pytest.fail("arrays read"))
+    _no_parsing(monkeypatch)
+    assert library.ModelLibrary([SHIPPED]).check("chair") == SHIPPED / "chair.obj"
+
+
+def test_check_parses_a_file_the_cache_does_not_hold(cache, tmp_path):
+    good = tmp_path / "crate.obj"
+    good.write_text((SHIPPED / "chair.obj").read_text().replace("density 465", "density 701"))
+    bad = tmp_path / "broken.obj"
+    bad.write_text("v 0 0 0\nf 1 2 3\n")
+    models = library.ModelLibrary([tmp_path])
+    assert models.check("crate") == good
+    assert len(list(cache.glob("*.npz"))) == 1  # parsed now, so the next check reads none
+    with pytest.raises(library.ModelFileError):
+        models.check("broken")
