@@ -46,7 +46,7 @@ from .layout import ItemSpec, Pose
 from .placement import Edge, Placer, flush, flush_box
 
 __all__ = ["MAX_BRUTE_FORCE_WALLS", "MAX_COPIES", "Family", "Run", "Strategy", "DeskLayout",
-           "copies", "perimeter_strategies", "brute_force_strategies", "lay_out_desks"]
+           "capacity", "copies", "perimeter_strategies", "brute_force_strategies", "lay_out_desks"]
 
 MAX_BRUTE_FORCE_WALLS = 4
 """Rooms with more walls than this get no brute-force search (MSU: 3⁴ = 81 is
@@ -328,6 +328,42 @@ class _Filler:
                     break
 
 
+def capacity(run: Run, desk: ItemSpec, edges: Sequence[Edge]) -> int:
+    """Most desks ``run`` can seat, from the geometry alone: an upper bound that lets
+    :func:`lay_out_desks` skip strategies that cannot beat the best so far.
+
+    A row's desk bodies stand side by side within the wall's span (plus the overhang at
+    both ends), so at most ``span / desk width`` of them; a bank seats two desks per
+    level at each of its centres, its levels a pitch apart within the room's extent
+    across the wall (``edges`` bound the room).
+
+    Examples
+    --------
+    >>> from cga.operations.furniture.rules import FurnitureRule
+    >>> desk = ItemSpec(FurnitureRule("Office", "desk", is_along_wall=True), "desk", (1.2, 1, 0.6))
+    >>> wall = Edge((0.0, 0.0), (5.0, 0.0))
+    >>> capacity(Run(wall, "wall"), desk, [wall])
+    4
+    >>> capacity(Run(wall, "wall", overhang=True), desk, [wall])  # 0.6 m over each end
+    5
+    """
+    axis = run.edge.axis
+    assert axis is not None
+    length = run.edge.span[1] - run.edge.span[0]
+    if run.mode == "wall":
+        if run.overhang:
+            length += 2 * OVERHANG * desk.width
+        return min(MAX_COPIES, int(math.floor(length / desk.width + 1e-6)))
+    reach = desk.depth + desk.rule.clearance_front
+    if length < 2 * reach - _TOLERANCE:
+        return 0
+    centres = int(math.floor((length - 2 * reach) / (2 * reach) + _TOLERANCE)) + 1
+    across = [c for e in edges for c in (e.start[1 - axis], e.end[1 - axis])]
+    levels = int(math.floor((max(across) - min(across))
+                            / (desk.width + desk.rule.clearance_side) + 1e-6)) + 1
+    return min(MAX_COPIES, 2 * centres * levels)
+
+
 def _at(axis: int, value: float, fixed: float, rotation: int) -> Pose:
     return Pose(value, fixed, rotation) if axis == 0 else Pose(fixed, value, rotation)
 
@@ -354,8 +390,11 @@ def lay_out_desks(placer: Placer, families: Sequence[Family],
     Notes
     -----
     Each strategy costs one free-interval sweep and one family test per desk; the brute
-    force adds up to 80 strategies for a room of four walls, most skipped by the
-    single-wall estimates.
+    force adds up to 80 strategies for a room of four walls. A strategy is skipped when
+    its walls cannot hold more desks than the best so far (:func:`capacity`, and for
+    the brute force what each wall seats alone), and the search stops once every copy
+    is seated (:data:`MAX_COPIES` in a large room): the result is the one the full
+    search gives, since only a strictly larger count replaces the best.
     """
     if not families:
         return DeskLayout("none", 0, ())
@@ -364,26 +403,30 @@ def lay_out_desks(placer: Placer, families: Sequence[Family],
     door = doors[0] if doors else None
     filler = _Filler(placer, families)
     best = DeskLayout("none", 0, ())
-    for strategy in perimeter_strategies(edges, door, desk.width):
+    perimeter = perimeter_strategies(edges, door, desk.width)
+    brute = (brute_force_strategies(edges, door, desk.width)
+             if len(edges) <= MAX_BRUTE_FORCE_WALLS else [])
+    # per run: what its wall can hold at most, then (brute force) what it seats alone
+    bound = {run: capacity(run, desk, edges) for s in perimeter + brute for run in s.runs}
+    for k, strategy in enumerate(perimeter + brute):
+        if best.count == len(families):
+            break  # every copy seated: no strategy can do better
+        runs = strategy.runs
+        is_brute = k >= len(perimeter)
+        alone = is_brute and len(runs) == 1
+        # a wall that seats nothing alone seats nothing after others either: the same
+        # combination with it left empty was tried before
+        if is_brute and not alone and any(bound[r] == 0 for r in runs):
+            continue
+        # nor can a strategy whose walls hold no more than the best so far win (the
+        # brute force's single walls are laid out anyway: they give the bounds above)
+        if not alone and min(len(families), sum(bound[r] for r in runs)) <= best.count:
+            continue
         count, poses = filler.run(strategy)
+        if alone:
+            bound[runs[0]] = count
         if count > best.count:
             best = DeskLayout(strategy.name, count, tuple(poses))
-    if len(edges) <= MAX_BRUTE_FORCE_WALLS:
-        alone: dict[tuple[Edge, str], int] = {}
-        for strategy in brute_force_strategies(edges, door, desk.width):
-            runs = strategy.runs
-            if len(runs) == 1:
-                count, poses = filler.run(strategy)
-                alone[(runs[0].edge, runs[0].mode)] = count
-            else:
-                bounds = [alone.get((r.edge, r.mode), MAX_COPIES) for r in runs]
-                # a wall that seats nothing alone seats nothing after others either: the
-                # same combination with it left empty was tried before
-                if 0 in bounds or sum(bounds) <= best.count:
-                    continue
-                count, poses = filler.run(strategy)
-            if count > best.count:
-                best = DeskLayout(strategy.name, count, tuple(poses))
     for spec, pose in best.poses:
         placer.layout.add(spec, pose)
     return best

@@ -256,3 +256,62 @@ def test_the_relaxed_layout_hangs_desks_over_short_walls(desk_library, tmp_path,
                            library=desk_library)
     assert not [i for i in strict.furniture if i.model == "desk"]
     assert any("no wall long enough for desk" in d.message for d in strict.diagnostics)
+
+
+def poses(plan: FloorPlan, table: Path, library: ModelLibrary, seed: int = 0) -> list:
+    furnished = furnish_floor(plan, table, seed=seed, library=library)
+    return sorted((i.name, i.model, tuple(round(v, 9) for v in i.footprint().bounds))
+                  for i in furnished.furniture)
+
+
+@pytest.mark.parametrize("width, depth, doors", [
+    (4.0, 3.0, ((0, 0.3, "start"),)),
+    (6.0, 5.0, ((0, 0.5, "end"), (1, 0.7, "start"))),
+    (3.0, 1.5, ((1, 0.5, "start"),)),
+    (9.0, 7.0, ((3, 0.4, "start"),)),
+])
+def test_pruning_keeps_the_full_search_result(width, depth, doors, room_plan, rules_dir,
+                                              library, monkeypatch):
+    """Skipping strategies that cannot win changes nothing: the same furniture as with
+    every strategy laid out (no wall bounded but by the number of copies)."""
+    plan = room_plan(width, depth, room_type="Office", doors=doors, windows=((2, 0.3),))
+    table = rules_dir / "furniture_office.csv"
+    pruned = poses(plan, table, library)
+    monkeypatch.setattr(desks, "capacity", lambda *args: desks.MAX_COPIES)
+    assert poses(plan, table, library) == pruned
+
+
+def test_a_room_holding_every_copy_stops_after_the_first_strategy(room_plan, rules_dir,
+                                                                   library, monkeypatch):
+    """A 40 x 30 m office seats all MAX_COPIES desks along its first walk: no other
+    strategy can seat more, so none is laid out."""
+    laid: list[str] = []
+    real = desks._Filler.run
+
+    def spy(self, strategy):
+        laid.append(strategy.name)
+        return real(self, strategy)
+
+    monkeypatch.setattr(desks._Filler, "run", spy)
+    furnished = furnish_floor(room_plan(40.0, 30.0, room_type="Office"),
+                              rules_dir / "furniture_office.csv", seed=0, library=library)
+    assert sum(1 for i in furnished.furniture if i.model == "desk") == desks.MAX_COPIES
+    assert laid == ["clockwise"]
+
+
+def test_capacity_bounds_what_a_wall_seats(office, desk_table, desk_library, monkeypatch):
+    """Every strategy laid out seats no more desks than its walls' capacities allow."""
+    seen: list[tuple[int, int]] = []
+    real = desks._Filler.run
+
+    def spy(self, strategy):
+        count, placed = real(self, strategy)
+        edges = self.placer.edges
+        seen.append((count, sum(desks.capacity(r, self.desk, edges) for r in strategy.runs)))
+        return count, placed
+
+    monkeypatch.setattr(desks._Filler, "run", spy)
+    for width, depth, wall in [(6.0, 1.3, 3), (3.0, 1.5, 1), (5.0, 4.0, 0)]:
+        desk_count(office(width, depth, wall), desk_table, desk_library)
+    assert seen and all(count <= bound for count, bound in seen)
+    assert any(count == bound for count, bound in seen)  # the bound is tight on some wall
