@@ -45,7 +45,7 @@ from .clearance import OpeningStrip, quarter_turn_towards
 from .layout import ItemSpec, Pose
 from .placement import Edge, Placer, flush, flush_box
 
-__all__ = ["MAX_BRUTE_FORCE_WALLS", "MAX_COPIES", "Family", "Run", "Strategy", "DeskLayout",
+__all__ = ["MAX_BRUTE_FORCE_WALLS", "MAX_COPIES", "MAX_TESTS", "Family", "Run", "Strategy", "DeskLayout",
            "capacity", "copies", "perimeter_strategies", "brute_force_strategies", "lay_out_desks"]
 
 MAX_BRUTE_FORCE_WALLS = 4
@@ -54,6 +54,12 @@ manageable, 3⁵ = 243 is not)."""
 
 MAX_COPIES = 64
 """Most copies of a perimeter row per room."""
+
+MAX_TESTS = 500
+"""Most desk poses one search tests (each a family test: desk, chair, passage). The
+shipped office demos need at most about 360; a hall-sized office would need thousands,
+most of them in the brute force, so the search stops there with the best layout so far
+(:attr:`DeskLayout.cut_short`)."""
 
 OVERHANG = 0.5
 """Share of its width a desk may hang past the end of its wall in the relaxed
@@ -132,12 +138,14 @@ class Strategy:
 
 @dataclass(frozen=True)
 class DeskLayout:
-    """The winning layout: its strategy, how many desks it seats and every pose (desks
-    and children, placement order)."""
+    """The winning layout: its strategy, how many desks it seats, every pose (desks
+    and children, placement order) and whether the search stopped at
+    :data:`MAX_TESTS` before trying every strategy."""
 
     strategy: str
     count: int
     poses: tuple[tuple[ItemSpec, Pose], ...]
+    cut_short: bool = False
 
 
 def _door_point(door: OpeningStrip) -> np.ndarray:
@@ -230,6 +238,7 @@ class _Filler:
         self.layout = placer.layout
         self.families = families
         self.desk = families[0].desk  # the desk to seat next
+        self.tests = 0  # desk poses tested so far (at most MAX_TESTS)
         # runs laid so far → the poses of the families they seated: the filling is
         # deterministic, so strategies sharing their first runs share that result
         self._seated: dict[tuple[Run, ...], tuple[tuple[Pose, ...], ...]] = {(): ()}
@@ -256,16 +265,24 @@ class _Filler:
 
     def _fill(self, run: Run, count: int) -> int:
         """Seat families from number ``count`` on along ``run``; the new count."""
-        if count == len(self.families):
+        if count == len(self.families) or self.exhausted:
             return count
         self.desk = self.families[count].desk
         for pose in self._poses(run):
+            if self.exhausted:
+                break
+            self.tests += 1
             if self.placer.seat_family(self.desk, pose):
                 count += 1
                 if count == len(self.families):
                     break
                 self.desk = self.families[count].desk
         return count
+
+    @property
+    def exhausted(self) -> bool:
+        """Whether the search has tested :data:`MAX_TESTS` poses."""
+        return self.tests >= MAX_TESTS
 
     def _poses(self, run: Run) -> Iterator[Pose]:
         """Candidate poses for :attr:`desk` along ``run``, in filling order; the free
@@ -394,7 +411,10 @@ def lay_out_desks(placer: Placer, families: Sequence[Family],
     its walls cannot hold more desks than the best so far (:func:`capacity`, and for
     the brute force what each wall seats alone), and the search stops once every copy
     is seated (:data:`MAX_COPIES` in a large room): the result is the one the full
-    search gives, since only a strictly larger count replaces the best.
+    search gives, since only a strictly larger count replaces the best. Past
+    :data:`MAX_TESTS` tested poses the search stops with the best layout so far (the
+    strategy under way seats the desks it had seated), so a room costs at most that
+    many family tests.
     """
     if not families:
         return DeskLayout("none", 0, ())
@@ -427,6 +447,9 @@ def lay_out_desks(placer: Placer, families: Sequence[Family],
             bound[runs[0]] = count
         if count > best.count:
             best = DeskLayout(strategy.name, count, tuple(poses))
+        if filler.exhausted:
+            best = replace(best, cut_short=True)
+            break
     for spec, pose in best.poses:
         placer.layout.add(spec, pose)
     return best

@@ -41,7 +41,7 @@ from cga.model import Diagnostic, FloorPlan, FurnitureItem
 from .clearance import Keepout, OpeningStrip, door_keepouts, door_strips, window_strips
 from .details import detail_items
 from .disorder import disturb
-from .desks import MAX_COPIES, DeskLayout, Family, copies, lay_out_desks
+from .desks import MAX_COPIES, MAX_TESTS, DeskLayout, Family, copies, lay_out_desks
 from .layout import ItemSpec, Layout, Pose
 from .passage import PASSAGE_WIDTH, Passage
 from .placement import Placer
@@ -76,10 +76,12 @@ class RoomSite:
 
 @dataclass(frozen=True)
 class RoomResult:
-    """The items placed in a room and ``(item, reason)`` for each one left out."""
+    """The items placed in a room, ``(item, reason)`` for each one left out and the
+    perimeter rows whose desk layout search stopped at :data:`.desks.MAX_TESTS`."""
 
     items: tuple[FurnitureItem, ...]
     left_out: tuple[tuple[str, str], ...]
+    cut_short: tuple[str, ...] = ()
 
 
 CROWDING = 2.0
@@ -164,7 +166,7 @@ def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
 
 def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
                 iterations: int, passage: Passage | None, groups: _Copies,
-                desk_layouts: dict[tuple[tuple[str, Pose], ...], DeskLayout]
+                desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout]
                 ) -> tuple[Placer, list[tuple[str, str]]]:
     starts = _starts(site, specs, rng, iterations, groups)
     layout = Layout(site.interior, list(site.keepouts), list(site.windows), passage)
@@ -175,7 +177,8 @@ def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Genera
             continue
         if spec.name in groups.families:
             # the same items placed before give the same desks: lay them out once
-            key = tuple(sorted((name, pose) for name, (_, pose) in layout.placed.items()))
+            key = (spec.name, tuple(sorted((name, pose)
+                                           for name, (_, pose) in layout.placed.items())))
             desks = desk_layouts.get(key)
             if desks is None:
                 desks = desk_layouts[key] = lay_out_desks(placer, groups.families[spec.name],
@@ -245,7 +248,7 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     specs, groups = _with_copies(site, specs)
     passage = Passage(site.interior, site.doors, passage_width) if passage_width > 0 else None
     best: tuple[Placer, list[tuple[str, str]]] | None = None
-    desk_layouts: dict[tuple[tuple[str, Pose], ...], DeskLayout] = {}
+    desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout] = {}
     stale = 0
     for _ in range(max(1, attempts)):
         placer, left_out = _solve_once(site, specs, rng, steering_iterations, passage, groups,
@@ -268,7 +271,8 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
                       parent=spec.rule.pair_with, non_collision=spec.rule.non_collision,
                       yaw=pose.yaw)
         for spec, pose in (placed[s.name] for s in specs if s.name in placed))
-    return RoomResult(items, tuple(left_out))
+    cut_short = sorted({row for (row, _), d in desk_layouts.items() if d.cut_short})
+    return RoomResult(items, tuple(left_out), tuple(cut_short))
 
 
 def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
@@ -325,4 +329,9 @@ def furnish_plan(plan: FloorPlan, rules: FurnitureRules,
             diagnostics.append(Diagnostic("warning", STAGE,
                                           f"{name} left out of {room.label}: {reason}",
                                           floor=plan.index, room=room.id))
+        for name in result.cut_short:
+            diagnostics.append(Diagnostic(
+                "info", STAGE, f"{name} rows in {room.label}: the desk layout search stopped "
+                f"after {MAX_TESTS} tested poses with the best layout so far",
+                floor=plan.index, room=room.id))
     return tuple(furniture), tuple(diagnostics)

@@ -14,7 +14,7 @@ from shapely.geometry.polygon import orient
 from cga.authoring import furnish_floor
 from cga.errors import RuleTableError
 from cga.model import OUTSIDE, Door, FloorPlan, FloorSettings, Room, Wall
-from cga.operations.furniture import desks
+from cga.operations.furniture import desks, solver
 from cga.operations.furniture.clearance import door_strips
 from cga.operations.furniture.library import ModelLibrary, default_library
 from cga.operations.furniture.placement import room_edges
@@ -315,3 +315,32 @@ def test_capacity_bounds_what_a_wall_seats(office, desk_table, desk_library, mon
         desk_count(office(width, depth, wall), desk_table, desk_library)
     assert seen and all(count <= bound for count, bound in seen)
     assert any(count == bound for count, bound in seen)  # the bound is tight on some wall
+
+
+def test_a_hall_sized_office_stops_the_search_at_the_test_budget(room_plan, rules_dir,
+                                                                  library, monkeypatch):
+    """A 15 x 12 m office seats about fifty desks but not every copy, so every strategy
+    could win: the search stops after MAX_TESTS tested poses per layout, keeps its best
+    layout (checked like any) and says so."""
+    tests: list[int] = []
+    real_lay, real_seat = desks.lay_out_desks, desks.Placer.seat_family
+
+    def counting_lay(*args):
+        tests.append(0)
+        return real_lay(*args)
+
+    def counting_seat(self, *args):
+        if tests:
+            tests[-1] += 1
+        return real_seat(self, *args)
+
+    monkeypatch.setattr(solver, "lay_out_desks", counting_lay)
+    monkeypatch.setattr(desks.Placer, "seat_family", counting_seat)
+    table = rules_dir / "furniture_office.csv"
+    furnished = furnish_floor(room_plan(15.0, 12.0, room_type="Office"), table, seed=0,
+                              library=library)
+    assert tests and max(tests) <= desks.MAX_TESTS
+    assert 40 <= sum(1 for i in furnished.furniture if i.model == "desk") < desks.MAX_COPIES
+    assert furniture_violations(furnished, table) == []
+    assert [d.level for d in furnished.diagnostics
+            if "desk layout search stopped" in d.message] == ["info"]
