@@ -32,7 +32,7 @@ import zipfile
 from importlib.metadata import version
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
-from functools import cached_property
+from functools import cache, cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
@@ -383,7 +383,13 @@ def load_model(path: Path) -> FurnitureModel:
 
 def _cache_key(data: bytes) -> str:
     """The on-disk cache key of a model file's bytes (a new trimesh parses anew)."""
-    return digest(_CACHE_FORMAT, version("trimesh"), data)
+    return digest(_CACHE_FORMAT, _trimesh_version(), data)
+
+
+@cache
+def _trimesh_version() -> str:
+    """trimesh's installed version, read once: each lookup parses its metadata file."""
+    return version("trimesh")
 
 
 def _is_cached(path: Path) -> bool:
