@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
@@ -41,16 +41,16 @@ from cga.shape import Shape
 from cga.table_units import describe_unit, unit_note
 
 from cga.operation import CheckContext, Child, Operation, OperationContext, Param
-from .roomtyping.assign import Typing, assign_types
-from .roomtyping.backtrack import RoomSet
 from .roomtyping.door_states import DOOR_STATE_CHOICES, with_door_states
-from .roomtyping.doors import (Interval, clear_windows, door_centre, door_opening,
-                               door_spans, front_door_site, make_door)
-from .roomtyping.room_graph import (DoorSites, Pair, access_pairs, door_sites, reachability_pairs,
-                                    room_graph, rule_pairs)
 from .roomtyping.rules import DEFAULT_TYPE, RuleTable, load_rule_table
-from .roomtyping.targets import target_areas
-from .stairs.access import core_door_spans
+
+if TYPE_CHECKING:
+    from .roomtyping.assign import Typing
+    from .roomtyping.doors import Interval
+    from .roomtyping.room_graph import DoorSites, Pair
+
+# The typing, door and graph modules are imported where a floor is typed, not here:
+# ``cga check`` loads this module for its parameters, value and table checks only.
 
 __all__ = ["DOOR_POSITIONS", "DoorPosition", "MAX_REDRAWS", "CIRCULATION_TYPE", "TypeRooms", "type_plan"]
 
@@ -112,6 +112,8 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         any wall; the ground floor has no outer wall that takes a front door; or, with
         ``strict``, the rules leave a room unreachable.
     """
+    from .roomtyping.targets import target_areas
+
     if door_position not in DOOR_POSITIONS:
         raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
     first_error: NoSolutionError | None = None
@@ -200,6 +202,13 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
                  units: float, strict: bool, door_position: Literal["center", "random"],
                  door_state: str) -> FloorPlan:
     """:func:`type_plan` on one layout, without re-draws."""
+    from .roomtyping.assign import assign_types
+    from .roomtyping.backtrack import RoomSet
+    from .roomtyping.doors import door_centre, door_spans
+    from .roomtyping.room_graph import (access_pairs, door_sites, reachability_pairs,
+                                        room_graph, rule_pairs)
+    from .stairs.access import core_door_spans
+
     width = plan.settings.door_width
     sites = door_sites(plan, core_door_spans(plan, door_spans(plan)), width)
     fixed = {room.id: room.type for room in plan.rooms if room.type is not None}
@@ -277,6 +286,8 @@ def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Wi
                     rng: np.random.Generator, door_position: DoorPosition,
                     notes: list[Diagnostic]) -> tuple[Window, ...]:
     """Put the front door in ``room``'s outer wall; returns the windows left."""
+    from .roomtyping.doors import clear_windows, front_door_site
+
     width = plan.settings.door_width
     wall, centre, replaces = front_door_site(candidates, width, rng, door_position)
     if replaces:
@@ -293,6 +304,8 @@ def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Wi
 def _add_door(door_id: int, walls: dict[int, Wall], wall_id: int, centre: float,
               rooms: tuple[int, int], plan: FloorPlan,
               reason: Literal["rule", "reachability", "front", "stair"]) -> Door:
+    from .roomtyping.doors import door_opening, make_door
+
     door = make_door(door_id, walls[wall_id], centre, rooms, plan, reason=reason)
     walls[wall_id] = walls[wall_id].with_opening(door_opening(door, plan))
     return door

@@ -13,9 +13,25 @@ The grammar operation and the floor-plan wiring are in :mod:`cga.operations.type
 rule authors test their tables with :mod:`cga.authoring`.
 """
 
-from .assign import Typing, TypingNote, assign_types
-from .backtrack import RoomSet, RuleSpec
+from importlib import import_module
+from typing import TYPE_CHECKING, Any
+
 from .rules import COLUMNS, DEFAULT_TYPE, RuleTable, TypeRule, load_rule_table, parse_rule_table
+
+if TYPE_CHECKING:
+    from .assign import Typing, TypingNote, assign_types
+    from .backtrack import RoomSet, RuleSpec
+
+_LAZY = {"Typing": "assign", "TypingNote": "assign", "assign_types": "assign",
+         "RoomSet": "backtrack", "RuleSpec": "backtrack"}
+"""Names imported on first use (PEP 562): ``cga check`` reads rule tables only."""
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(import_module(f".{module}", __name__), name)
 
 __all__ = [
     "COLUMNS",

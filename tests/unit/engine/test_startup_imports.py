@@ -14,7 +14,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[3]
 HEAVY = ("trimesh", "scipy", "pybullet", "manifold3d", "PIL", "networkx", "rich")
 LAYOUT = ("cga.operations.furniture.solver", "cga.operations.floorplan.bsp",
-          "cga.operations.floorplan.circulation")
+          "cga.operations.floorplan.circulation", "cga.operations.roomtyping.assign",
+          "cga.operations.roomtyping.room_graph")
 """Layout code that only a build runs: a check loads the operations for their checks."""
 
 _PROBE = """

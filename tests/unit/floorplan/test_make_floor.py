@@ -232,20 +232,20 @@ def test_bad_corridor_options_are_derivation_errors(kw, message):
 
 
 def test_only_partition_errors_become_user_errors(monkeypatch):
-    import cga.operations.make_floor as make_floor
+    import cga.operations.floorplan.bsp as bsp  # make_floor imports it in apply
     from cga.operations.floorplan.errors import PartitionError
 
     def refuses(*args, **kwargs):
         raise PartitionError("the region's boundary touches itself")
 
-    monkeypatch.setattr(make_floor, "partition", refuses)
+    monkeypatch.setattr(bsp, "partition", refuses)
     with pytest.raises(DerivationError, match="cannot cut this footprint.*touches itself"):
         MakeFloor().apply(storey(), args(), context()[0])
 
     def buggy(*args, **kwargs):
         raise ValueError("operands could not be broadcast together")
 
-    monkeypatch.setattr(make_floor, "partition", buggy)
+    monkeypatch.setattr(bsp, "partition", buggy)
     with pytest.raises(ValueError, match="broadcast") as caught:
         MakeFloor().apply(storey(), args(), context()[0])
     assert not isinstance(caught.value, DerivationError)
