@@ -117,6 +117,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     if door_position not in DOOR_POSITIONS:
         raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
     first_error: NoSolutionError | None = None
+    redraws = 0
     fallback: FloorPlan | None = None  # typed, but with rooms no rule takes
     for attempt in range(MAX_REDRAWS + 1):
         try:
@@ -134,15 +135,19 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         recipe = plan.layout
         if recipe is None or attempt == MAX_REDRAWS:
             break
-        areas = target_areas(table, recipe.free_rooms, _free_area(plan), table.area_scale(units))
+        areas = target_areas(table, recipe.free_rooms, _free_area(plan), table.area_scale(units)) \
+            if recipe.free_rooms > 0 else []
+        if not areas or min(areas) <= 0:
+            break  # fixed rooms fill the floor: no room the partition could draw again
         plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
+        redraws += 1
     if fallback is not None:
         return fallback
     assert first_error is not None
     reasons = list(first_error.reasons)
-    if plan.layout is not None:
-        reasons.append(f"the floor was re-drawn {MAX_REDRAWS} times (cuts aimed at the "
-                       "table's areas) without a layout the rules can type")
+    if redraws:
+        reasons.append(f"the floor was re-drawn {redraws} time{'s' if redraws > 1 else ''} "
+                       "(cuts aimed at the table's areas) without a layout the rules can type")
     reasons += unit_reasons(table, units, _free_area(plan))
     if reasons == first_error.reasons:
         raise first_error
