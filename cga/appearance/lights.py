@@ -9,7 +9,9 @@
   centres of equal stretches, ``(2i + 1) L / 2n`` — three lights in an office of
   length L hang at L/6, L/2 and 5L/6, as the TFG's offices have them (Ruiz 2016 §3.3);
 * ``Count`` ``auto``: a grid with ``max(1, round(L / Spacing))`` lights along and
-  ``max(1, round(W / Spacing))`` across (default spacing 3 m).
+  ``max(1, round(W / Spacing))`` across (default spacing 3 m), at most
+  :data:`MAX_LIGHTS` in all: a larger grid is spread wider, as a count is capped at 100
+  (a 100 km hall would otherwise hang 800,000 lights).
 
 The length runs along the longer side of the room's minimum rotated rectangle; a light
 that would fall outside the room (an L-shaped room) is left out, and a room keeps at
@@ -37,7 +39,7 @@ from .material import RGB, srgb_to_linear
 from .tables import Range, rows_of
 
 __all__ = ["Light", "LightRule", "LightRules", "load_light_rules", "parse_light_rules",
-           "room_light_points", "plan_lights", "kelvin_to_rgb", "HANG"]
+           "room_light_points", "plan_lights", "kelvin_to_rgb", "HANG", "MAX_LIGHTS"]
 
 HANG = 0.05
 """How far under the ceiling a light hangs (m)."""
@@ -110,6 +112,10 @@ def kelvin_to_rgb(kelvin: float) -> RGB:
     return (r, g, b)
 
 
+MAX_LIGHTS = 100
+"""Lights of one room at most, whether counted in the table or laid out on a grid."""
+
+
 def room_light_points(interior: Polygon, rule: LightRule) -> list[tuple[float, float]]:
     """Plan points ``(x, z)`` of a room's lights (module notes)."""
     if interior.is_empty:
@@ -129,6 +135,10 @@ def room_light_points(interior: Polygon, rule: LightRule) -> list[tuple[float, f
     else:
         along = max(1, round(length / rule.spacing))
         across = max(1, round(width / rule.spacing))
+        if along * across > MAX_LIGHTS:  # a hall-sized room: the grid spreads out
+            spread = math.sqrt(along * across / MAX_LIGHTS)
+            across = max(1, min(across, math.floor(across / spread)))
+            along = max(1, min(along, MAX_LIGHTS // across))
     points = [a + u * (2 * i + 1) / (2 * along) + v * (2 * j + 1) / (2 * across)
               for i in range(along) for j in range(across)]
     inside = [(float(p[0]), float(p[1])) for p in points
@@ -184,7 +194,7 @@ def parse_light_rules(text: str, *, file: str = "<lights>") -> LightRules:
         count_text = cells.text("Count").lower()
         count: int | None = None
         if count_text and count_text != "auto":
-            value = cells.number("Count", 1, 100)
+            value = cells.number("Count", 1, MAX_LIGHTS)
             if value != int(value):
                 raise cells.error("Count", f"expected a whole number of lights or auto, got "
                                            f"{count_text!r}")

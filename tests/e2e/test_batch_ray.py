@@ -13,8 +13,10 @@ from pathlib import Path
 
 import pytest
 
+from batch_outputs import manifest_records, output_tree
+
 import cga
-from cga.batch import MANIFEST, VOLATILE_FIELDS, run_batch, seed_folder
+from cga.batch import MANIFEST, run_batch, seed_folder
 from cga.cli import main
 
 ray = pytest.importorskip("ray")
@@ -49,27 +51,6 @@ def grammar(tmp_path) -> Path:
     return path
 
 
-def _records(manifest: Path) -> list[dict]:
-    lines = [json.loads(line) for line in manifest.read_text().splitlines()]
-    for line in lines:
-        for name in VOLATILE_FIELDS:
-            line.pop(name)
-    return sorted(lines, key=lambda line: line["seed"])
-
-
-def _tree(folder: Path) -> dict[str, object]:
-    """Every file's bytes; a scene JSON's as data without ``timings`` (docs/outputs.md)."""
-    files: dict[str, object] = {}
-    for path in sorted(folder.rglob("*")):
-        name = path.relative_to(folder).as_posix()
-        if path.name.endswith(".scene.json"):
-            files[name] = {k: v for k, v in json.loads(path.read_bytes()).items()
-                           if k != "timings"}
-        elif path.is_file():
-            files[name] = path.read_bytes()
-    return files
-
-
 def test_ray_builds_what_the_local_engine_builds(cluster, grammar, tmp_path, capsys):
     common = ["batch", str(grammar), "-n", "20", "--no-physics", "--json"]
     assert main([*common, "--out", str(tmp_path / "local")]) == 0
@@ -77,12 +58,13 @@ def test_ray_builds_what_the_local_engine_builds(cluster, grammar, tmp_path, cap
     assert main([*common, "--out", str(tmp_path / "ray"), "--engine", "ray", "--jobs", "2"]) == 0
     report = json.loads(capsys.readouterr().out)
     assert (report["houses"], report["built_now"], report["failed"]) == (20, 20, 0)
-    assert _records(tmp_path / "ray" / MANIFEST) == _records(tmp_path / "local" / MANIFEST)
+    assert (manifest_records(tmp_path / "ray" / MANIFEST)
+            == manifest_records(tmp_path / "local" / MANIFEST))
     folders = sorted(p.name for p in (tmp_path / "local").glob("seed_*"))
     assert folders == [seed_folder(s) for s in range(20)]
     assert sorted(p.name for p in (tmp_path / "ray").glob("seed_*")) == folders
     for folder in folders:
-        assert _tree(tmp_path / "ray" / folder) == _tree(tmp_path / "local" / folder)
+        assert output_tree(tmp_path / "ray" / folder) == output_tree(tmp_path / "local" / folder)
     assert not list((tmp_path / "ray").glob(".building-*"))
 
 
@@ -127,7 +109,7 @@ def test_a_killed_worker_loses_no_seed(cluster, grammar, tmp_path, retries):
                        retries=retries, build_options={"physics": False},
                        on_progress=kill_once)
     assert killed
-    lines = _records(tmp_path / "out" / MANIFEST)
+    lines = manifest_records(tmp_path / "out" / MANIFEST)
     assert [line["seed"] for line in lines] == list(range(20))  # every seed accounted for
     failed = [line for line in lines if line["error"]]
     if retries:  # Ray ran the lost build again

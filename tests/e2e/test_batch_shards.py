@@ -11,7 +11,9 @@ from pathlib import Path
 
 import pytest
 
-from cga.batch import LOCK, MANIFEST, VOLATILE_FIELDS, read_manifest, run_batch, seed_folder
+from batch_outputs import manifest_records, output_tree
+
+from cga.batch import LOCK, MANIFEST, read_manifest, run_batch, seed_folder
 from cga.batch_shard import parse_shard
 from cga.cli import main
 from cga.errors import UsageError
@@ -37,29 +39,6 @@ def block(tmp_path) -> Path:
     return path
 
 
-def _records(manifest: Path) -> list[dict]:
-    """The manifest's lines, sorted by seed, without the fields that vary between runs."""
-    lines = [json.loads(line) for line in manifest.read_text().splitlines()]
-    for line in lines:
-        for name in VOLATILE_FIELDS:
-            line.pop(name)
-    return sorted(lines, key=lambda line: line["seed"])
-
-
-def _tree(folder: Path) -> dict[str, object]:
-    """Every file's bytes; a scene JSON's as data without ``timings``, the one part that
-    changes between two builds of a seed (docs/outputs.md)."""
-    files: dict[str, object] = {}
-    for path in sorted(folder.rglob("*")):
-        if path.name.endswith(".scene.json"):
-            scene = json.loads(path.read_bytes())
-            scene.pop("timings")
-            files[path.relative_to(folder).as_posix()] = scene
-        elif path.is_file():
-            files[path.relative_to(folder).as_posix()] = path.read_bytes()
-    return files
-
-
 def test_shards_merged_equal_one_run(block, tmp_path, capsys):
     whole = tmp_path / "whole"
     run_batch(block, count=30, out_dir=whole, build_options=NO_PHYSICS)
@@ -74,10 +53,10 @@ def test_shards_merged_equal_one_run(block, tmp_path, capsys):
 
     assert main(["batch", "merge", str(shared), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["houses"] == 30
-    assert _records(shared / MANIFEST) == _records(whole / MANIFEST)
+    assert manifest_records(shared / MANIFEST) == manifest_records(whole / MANIFEST)
     assert {p.name: p.stat().st_ino for p in shared.glob("seed_*")} == folders  # not copied
     for seed in (0, 13, 29):
-        assert _tree(shared / seed_folder(seed)) == _tree(whole / seed_folder(seed))
+        assert output_tree(shared / seed_folder(seed)) == output_tree(whole / seed_folder(seed))
     # the merged folder resumes as an ordinary batch: nothing left to build
     assert run_batch(block, count=32, out_dir=shared, build_options=NO_PHYSICS).skipped == 30
     # a merge would now drop seeds 30 and 31, which only manifest.jsonl lists
@@ -91,7 +70,7 @@ def test_merge_of_shards_in_separate_folders_points_at_their_houses(block, tmp_p
         run_batch(block, count=6, out_dir=part, build_options=NO_PHYSICS,
                   shard=parse_shard(f"{index}/2"))
     assert main(["batch", "merge", *map(str, parts), "--quiet"]) == 0
-    lines = {line["seed"]: line for line in _records(parts[0] / MANIFEST)}
+    lines = {line["seed"]: line for line in manifest_records(parts[0] / MANIFEST)}
     assert sorted(lines) == list(range(6))
     assert "folder" not in lines[0] and lines[1]["folder"] == "../node1/seed_000001"
     assert set(read_manifest(parts[0])) == set(range(6))  # every folder found
@@ -162,7 +141,7 @@ def test_failed_seeds_are_merged_and_reported(tmp_path, capsys):
         run_batch(grammar, count=4, out_dir=tmp_path / "out", shard=parse_shard(f"{index}/2"))
     err = _cli_error(capsys, ["batch", "merge", str(tmp_path / "out")])
     assert "seeds 0, 1, 2, 3 failed" in err
-    assert all(line["error"] for line in _records(tmp_path / "out" / MANIFEST))
+    assert all(line["error"] for line in manifest_records(tmp_path / "out" / MANIFEST))
 
 
 @pytest.mark.parametrize("text", ["3/3", "-1/3", "1", "a/b", "1/0"])
@@ -195,7 +174,7 @@ def test_every_line_records_the_inputs_the_build_read(tmp_path):
     run_batch(grammar, count=2, out_dir=tmp_path / "out", build_options=NO_PHYSICS)
     import hashlib
 
-    for line in _records(tmp_path / "out" / MANIFEST):
+    for line in manifest_records(tmp_path / "out" / MANIFEST):
         inputs = line["provenance"]
         assert inputs["grammar"] == hashlib.sha256(ONE_ROOM.encode()).hexdigest()[:16]
         assert inputs["files"]["types.csv"] == hashlib.sha256(TYPES.encode()).hexdigest()[:16]
@@ -227,7 +206,7 @@ def test_resuming_after_the_grammar_changed_is_refused(block, tmp_path, capsys):
     (superseded,) = out.glob("superseded-*")
     assert (superseded / MANIFEST).read_bytes() == before
     assert sorted(p.name for p in superseded.glob("seed_*")) == [seed_folder(0), seed_folder(1)]
-    assert [line["seed"] for line in _records(out / MANIFEST)] == [0, 1, 2]
+    assert [line["seed"] for line in manifest_records(out / MANIFEST)] == [0, 1, 2]
     assert main(argv) == 0  # the new configuration resumes
 
 

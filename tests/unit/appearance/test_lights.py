@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon, box
 
-from cga.appearance.lights import (kelvin_to_rgb, load_light_rules, parse_light_rules,
-                                   room_light_points)
+from cga.appearance.lights import (MAX_LIGHTS, kelvin_to_rgb, load_light_rules,
+                                   parse_light_rules, room_light_points)
 from cga.errors import RuleTableError
 
 TABLE = Path(__file__).resolve().parents[3] / "rules" / "lights.csv"
@@ -51,9 +51,19 @@ def test_auto_lights_fill_the_room_on_a_grid(length, width, spacing):
     points = room_light_points(room, rule)
     long_side, short_side = max(length, width), min(length, width)
     expected = max(1, round(long_side / spacing)) * max(1, round(short_side / spacing))
-    assert len(points) == expected
+    assert len(points) == expected if expected <= MAX_LIGHTS else len(points) <= MAX_LIGHTS
     assert all(room.contains(Polygon(box(x - 1e-9, z - 1e-9, x + 1e-9, z + 1e-9)))
                for x, z in points)
+
+
+@pytest.mark.parametrize("length, width", [(99_999.0, 40.0), (400.0, 300.0), (40.0, 40.0)])
+def test_a_huge_room_hangs_at_most_the_cap_spread_evenly(length, width):
+    rule = _rules("*;auto;3;800;3000\n").for_room("Hall")
+    points = room_light_points(box(0, 0, length, width), rule)
+    assert 1 < len(points) <= MAX_LIGHTS
+    xs = sorted({round(x, 6) for x, _ in points})
+    gaps = {round(b - a, 3) for a, b in zip(xs, xs[1:])}
+    assert len(gaps) == 1 and xs[0] == pytest.approx(gaps.pop() / 2, abs=1e-3)  # even, centred
 
 
 def test_an_l_shaped_room_keeps_at_least_one_light_inside():

@@ -14,19 +14,18 @@ from __future__ import annotations
 import contextlib
 import io
 import json
-import shutil
 from pathlib import Path
 
 import pytest
 import trimesh
+
+from house_project import house_project
 
 from cga.cli import main
 from cga.operations.furniture.library import ModelFileError, load_model
 from cga.pipeline import build
 from cga.resources import shipped_dir
 
-DEMOS = Path(__file__).resolve().parents[3] / "demos"
-RULES = shipped_dir("cga.rules")
 MODELS = shipped_dir("cga.furniture_models")
 
 
@@ -40,12 +39,7 @@ def cli(*argv) -> tuple[int, str]:
 @pytest.fixture
 def project(tmp_path):
     """The house demo with its own copies of its tables, in a folder of its own."""
-    folder = tmp_path / "project"
-    folder.mkdir()
-    shutil.copy(DEMOS / "house.grammar", folder / "house.grammar")
-    for table in ("house_types.csv", "house_upper_types.csv", "furniture_house.csv"):
-        shutil.copy(RULES / table, folder / table)
-    return folder
+    return house_project(tmp_path)
 
 
 def _edit(path: Path, old: str, new: str) -> None:

@@ -19,8 +19,8 @@ from cga.cli import main
 from cga.errors import RuleTableError
 from cga.lot import read_lot
 from cga.pipeline import build
-from operations.furniture.rules import parse_furniture_rules
-from operations.roomtyping.rules import parse_rule_table
+from cga.operations.furniture.rules import parse_furniture_rules
+from cga.operations.roomtyping.rules import parse_rule_table
 
 ROOT = Path(__file__).resolve().parents[3]
 RULES = ROOT / "rules"
