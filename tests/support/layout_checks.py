@@ -32,7 +32,9 @@ class Table:
 
 
 def read_table(path: Path) -> Table:
-    rows = list(csv.DictReader(path.read_text(encoding="utf-8").splitlines(), delimiter=";"))
+    lines = [line for line in path.read_text(encoding="utf-8").splitlines()
+             if not line.startswith("#")]  # a '# units: m' line above the header
+    rows = list(csv.DictReader(lines, delimiter=";"))
     def flag(row, key):
         return (row.get(key) or "").strip().lower() in ("1", "true")
     return Table(
