@@ -10,8 +10,9 @@ import pytest
 
 from cga.operations.furniture import library
 from cga.operations.furniture.library import load_model
+from cga.resources import shipped_dir
 
-SHIPPED = Path(library.__file__).resolve().parents[2] / "models"
+SHIPPED = shipped_dir("cga.furniture_models")
 
 
 @pytest.fixture
