@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from batch_outputs import manifest_records, output_tree
+from batch_outputs import ONE_ROOM, TYPES, manifest_records, output_tree
 
 import cga
 from cga.batch import MANIFEST, run_batch, seed_folder
@@ -21,13 +21,6 @@ from cga.cli import main
 
 ray = pytest.importorskip("ray")
 
-ONE_ROOM = ("units = 1;\nLot: rectangle(5, 4)\nRules:\n"
-            "Lot --> extrude(3) Storey\n"
-            "Storey --> make_floor(0, 0.2, 1>1.2>1.2, 0.9, 2.1) Floor\n"
-            'Floor --> type_rooms("types.csv") Typed\n'
-            'Typed --> add_furniture("furniture_house.csv") Furnished\n')
-TYPES = ("Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom\n"
-         "Livingroom;1;1;Livingroom;true;1;0\n")
 TASK_TITLE = "ray::_call"
 """The process title of a Ray worker while it runs a build (Ray names it after the task)."""
 

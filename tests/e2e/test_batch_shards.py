@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from batch_outputs import manifest_records, output_tree
+from batch_outputs import ONE_ROOM, TYPES, manifest_records, output_tree
 
 from cga.batch import LOCK, MANIFEST, read_manifest, run_batch, seed_folder
 from cga.batch_shard import parse_shard
@@ -21,14 +21,6 @@ from cga.errors import UsageError
 BLOCK = "Lot: rectangle(12, 8)\nRules:\nLot --> extrude([5;7]) Body\n"
 """Builds in a few hundredths of a second; the random height makes seeds differ."""
 
-ONE_ROOM = ("units = 1;\nLot: rectangle(5, 4)\nRules:\n"
-            "Lot --> extrude(3) Storey\n"
-            "Storey --> make_floor(0, 0.2, 1>1.2>1.2, 0.9, 2.1) Floor\n"
-            'Floor --> type_rooms("types.csv") Typed\n'
-            'Typed --> add_furniture("furniture_house.csv") Furnished\n')
-"""Reads a rule table of its own, a shipped one and shipped models."""
-TYPES = ("Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom\n"
-         "Livingroom;1;1;Livingroom;true;1;0\n")
 NO_PHYSICS = {"physics": False, "formats": ["glb", "json"]}
 
 

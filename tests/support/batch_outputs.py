@@ -1,5 +1,6 @@
-"""What two batches must agree on: manifest lines and output files, less what varies
-between two builds of the same seed (docs/outputs.md, docs/batch.md)."""
+"""Shared pieces of the batch tests: a one-room grammar that reads a table of its own, and
+what two batches must agree on (manifest lines and output files, less what varies between
+two builds of the same seed; docs/outputs.md, docs/batch.md)."""
 
 from __future__ import annotations
 
@@ -8,7 +9,17 @@ from pathlib import Path
 
 from cga.batch import VOLATILE_FIELDS
 
-__all__ = ["manifest_records", "output_tree"]
+__all__ = ["ONE_ROOM", "TYPES", "manifest_records", "output_tree"]
+
+ONE_ROOM = ("units = 1;\nLot: rectangle(5, 4)\nRules:\n"
+            "Lot --> extrude(3) Storey\n"
+            "Storey --> make_floor(0, 0.2, 1>1.2>1.2, 0.9, 2.1) Floor\n"
+            'Floor --> type_rooms("types.csv") Typed\n'
+            'Typed --> add_furniture("furniture_house.csv") Furnished\n')
+"""Reads a rule table of its own (``types.csv``: :data:`TYPES`), a shipped one and shipped
+models."""
+TYPES = ("Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom\n"
+         "Livingroom;1;1;Livingroom;true;1;0\n")
 
 
 def manifest_records(manifest: Path) -> list[dict]:
