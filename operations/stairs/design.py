@@ -151,6 +151,8 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
     breadth = _up(core.interior_width + 2 * wall)
     centre = footprint.centroid
     free = _free_region(footprint, corridors)
+    room = _Room.of(footprint, free, min_width)
+    corridor_edges = [c.boundary for c in corridors]
     boundary = footprint.exterior
     options: list[tuple[bool, bool, bool, float, StairCore]] = []
     for a, b in _edges_to_stand_on(footprint, corridors):
@@ -161,14 +163,13 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
         n = np.array([-d[1], d[0]])  # the inside lies to the left of a CCW edge
         for s in _positions(edge, length, min_width):
             corner = np.asarray(a) + d * s
-            for deep, hugs in _breadths(free, corner, d, n, length, breadth, min_width,
+            for deep, hugs in _breadths(room.edges, corner, d, n, length, breadth, min_width,
                                         core.interior_width + 2 * wall):
                 # rounded, so a core flush with a corner meets it exactly (3.01 + 5.39 is
                 # 8.399999999999999 in floating point)
                 rect = Polygon(np.round([corner, corner + d * length,
                                          corner + d * length + n * deep, corner + n * deep], 9))
-                if any(rect.intersection(c).area > 1e-9 for c in corridors) or not _fits(
-                        footprint, free, rect, min_width):
+                if any(rect.intersection(c).area > 1e-9 for c in corridors) or not room.fits(rect):
                     continue
                 for flip, hug in itertools.product((False, True), hugs):
                     u = -d if flip else d
@@ -184,8 +185,8 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
                         continue  # the landing's long side is an outer wall: no door there
                     landing = Point(option.at(depth / 2, core.interior_width / 2))
                     strip = _landing_strip(option, depth, wall)
-                    onto = any(strip.intersection(c.boundary).length >= door_width
-                               for c in corridors)
+                    onto = any(strip.intersection(edge).length >= door_width
+                               for edge in corridor_edges)
                     walled = rect.intersection(boundary).length > 1e-6
                     options.append((not onto, deep > breadth, not walled,
                                     landing.distance(centre), option))
@@ -219,7 +220,7 @@ def _positions(edge: float, length: float, min_width: float) -> list[float]:
     return sorted(out)
 
 
-def _breadths(free: Polygon | MultiPolygon, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
+def _breadths(edges: shapely.Geometry, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
               length: float, breadth: float, min_width: float,
               stair_breadth: float) -> list[tuple[float, tuple[float, ...]]]:
     """``(breadth, offsets)`` to try for a core standing at ``corner`` along ``d``.
@@ -230,17 +231,16 @@ def _breadths(free: Polygon | MultiPolygon, corner: np.ndarray, d: np.ndarray, n
     instead of a sliver. A stretched core's stair stands against either long side
     (``offsets`` from the edge), so its landing can face the corridor on either side.
     """
-    reach = _reach(free, corner, d, n, length, breadth + min_width)
+    reach = _reach(edges, corner, d, n, length, breadth + min_width)
     if breadth + 1e-6 < reach < breadth + min_width - 1e-6:
         return [(breadth, (0.0,)), (reach, (0.0, reach - stair_breadth))]
     return [(breadth, (0.0,))]
 
 
-def _reach(free: Polygon | MultiPolygon, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
+def _reach(edges: shapely.Geometry, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
            length: float, limit: float) -> float:
-    """How far the free region runs from the edge along ``n`` (at most ``limit``), the
-    least over the core's two ends and middle."""
-    edges = free.boundary
+    """How far the free region (whose boundary is ``edges``) runs from the edge along
+    ``n`` (at most ``limit``), the least over the core's two ends and middle."""
     reach = limit
     for t in (0.01, 0.5, 0.99):
         start = corner + d * (t * length) + n * 1e-4
@@ -266,15 +266,34 @@ def _free_region(footprint: Polygon, corridors: Sequence[Polygon]) -> Polygon | 
         if corridors else footprint
 
 
-def _fits(footprint: Polygon, free: Polygon | MultiPolygon, rect: Polygon, min_width: float) -> bool:
-    """The core lies inside, cuts the free region into no more parts than it had, and
-    leaves no part of it narrower than ``min_width`` that was not already."""
-    if not footprint.buffer(1e-7).covers(rect):
-        return False
-    rest = shapely.set_precision(free.difference(rect), 1e-6)
-    if rest.is_empty or _parts(rest) > _parts(free):
-        return False
-    return _narrow_area(rest, min_width) - _narrow_area(free, min_width) < 1e-3
+@dataclass(frozen=True)
+class _Room:
+    """What every candidate core of one footprint is tested against, computed once per
+    :func:`place_core` (the buffered footprint and the free region's own narrow area
+    would otherwise be recomputed for each of a few hundred candidates)."""
+
+    outline: Polygon
+    free: Polygon | MultiPolygon
+    free_parts: int
+    free_narrow: float
+    min_width: float
+    edges: shapely.Geometry
+
+    @classmethod
+    def of(cls, footprint: Polygon, free: Polygon | MultiPolygon, min_width: float) -> "_Room":
+        return cls(outline=footprint.buffer(1e-7), free=free, free_parts=_parts(free),
+                   free_narrow=_narrow_area(free, min_width), min_width=min_width,
+                   edges=free.boundary)
+
+    def fits(self, rect: Polygon) -> bool:
+        """The core lies inside, cuts the free region into no more parts than it had,
+        and leaves no part of it narrower than ``min_width`` that was not already."""
+        if not self.outline.covers(rect):
+            return False
+        rest = shapely.set_precision(self.free.difference(rect), 1e-6)
+        if rest.is_empty or _parts(rest) > self.free_parts:
+            return False
+        return _narrow_area(rest, self.min_width) - self.free_narrow < 1e-3
 
 
 def _parts(region: shapely.Geometry) -> int:
