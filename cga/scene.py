@@ -24,7 +24,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cga.appearance import Appearance, Light, Material
     from cga.difficulty import DifficultyReport
     from cga.georeference import Georeference
-    from cga.operations.furniture.library import ModelLibrary
+    from cga.operations.furniture.library import ModelGeometry, ModelLibrary
 
     from .doors import DoorLeaf
 
@@ -43,7 +43,10 @@ class ItemInfo:
     from the plan's :class:`~cga.model.FurnitureItem`; ``density`` (kg/m³) from the model
     file and ``mass`` (kg) is the posed parts' volume × density. ``convex_parts`` is False
     when some part of the model is not a closed convex solid (physics then decomposes the
-    mesh itself).
+    mesh itself). ``geometry`` is the model's parts in its own frame and ``pose`` the 4×4
+    matrix taking them to the item's place (:func:`cga.meshing.items.item_transform`), so
+    physics measures each model once and moves the result (None when the node was made
+    otherwise).
     """
 
     model: str
@@ -55,6 +58,8 @@ class ItemInfo:
     density: float
     mass: float
     convex_parts: bool
+    geometry: "ModelGeometry | None" = field(default=None, compare=False, repr=False)
+    pose: "np.ndarray | None" = field(default=None, compare=False, repr=False)
 
     def labels(self) -> dict[str, Any]:
         """The semantic labels stored with the item's glTF node (JSON values; the model

@@ -90,5 +90,6 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
         parts=parts,
         item=ItemInfo(model=model.name, model_path=model.path, room=item.room, name=item.name,
                       parent=item.parent, rotation=item.rotation, density=model.density,
-                      mass=volume * model.density, convex_parts=model.convex_parts),
+                      mass=volume * model.density, convex_parts=model.convex_parts,
+                      geometry=model.geometry, pose=matrix),
     )
