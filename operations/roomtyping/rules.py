@@ -38,6 +38,7 @@ from __future__ import annotations
 import difflib
 import math
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from pathlib import Path
 
 from cga.errors import BudgetError, RuleTableError, excerpt
@@ -172,8 +173,10 @@ def load_rule_table(path: str | Path) -> RuleTable:
     return parse_rule_table(read_table_text(path), file=str(path))
 
 
+@lru_cache(maxsize=16)
 def parse_rule_table(text: str, *, file: str = "<rules>") -> RuleTable:
-    """Parse the text of a typing table.
+    """Parse the text of a typing table (each text once per process: a batch builds
+    thousands of houses from one table, and the table is immutable).
 
     Parameters
     ----------
