@@ -27,7 +27,7 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
-    from cga.scene import SceneNode
+    from cga.scene import MeshArrays, SceneNode
 
 __all__ = ["BULLET_MARGIN", "CONTACT_SHRINK", "ConvexPiece", "collision_parts", "shrink_part",
            "structure_pieces"]
@@ -51,7 +51,7 @@ def shrink_part(vertices: np.ndarray, by: float = CONTACT_SHRINK) -> np.ndarray:
     return (vertices - centre) * scale + centre
 
 
-def collision_parts(node: "SceneNode", cache_dir: Path | None = None) -> list["trimesh.Trimesh"]:
+def collision_parts(node: "SceneNode", cache_dir: Path | None = None) -> list["MeshArrays"]:
     """An item's convex collision parts: its model's parts, or a V-HACD decomposition
     (cached on disk, :mod:`cga.checks.vhacd`) when it has none or its model says they
     are not convex (``ItemInfo.convex_parts`` False, e.g. a user's single-group OBJ)."""
@@ -59,8 +59,10 @@ def collision_parts(node: "SceneNode", cache_dir: Path | None = None) -> list["t
     if parts and node.convex_parts:
         return parts
     from cga.checks.vhacd import convex_decomposition  # pybullet only when needed
+    from cga.scene import MeshArrays
 
-    return list(convex_decomposition(node.mesh, cache=cache_dir))
+    return [MeshArrays(np.asarray(p.vertices), np.asarray(p.faces))
+            for p in convex_decomposition(node.mesh, cache=cache_dir)]
 
 
 _MIN_VOLUME = 1e-9

@@ -28,7 +28,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from .doors import DoorLeaf
 
-__all__ = ["ItemInfo", "NodeKind", "Scene", "SceneNode"]
+__all__ = ["ItemInfo", "MeshArrays", "NodeKind", "Scene", "SceneNode"]
 
 NodeKind = Literal["wall", "slab", "ceiling", "roof", "stair", "rail", "furniture", "mass", "face"]
 """What a scene node is; exporters colour and label by it."""
@@ -69,14 +69,29 @@ class ItemInfo:
                 "mass": self.mass, "convex_parts": self.convex_parts}
 
 
+@dataclass(frozen=True, eq=False, slots=True)
+class MeshArrays:
+    """A triangle mesh as plain arrays: ``vertices`` ``float[n, 3]`` and ``faces``
+    ``int[m, 3]`` (indices into ``vertices``, counter-clockwise seen from outside).
+
+    A furniture item's posed parts are kept like this rather than as trimesh objects,
+    which cost far more to make than the checks that read them (a house has about a
+    thousand parts); a consumer that needs mesh operations builds the trimesh object
+    itself. The arrays may be shared with the model library, so treat them as read-only.
+    """
+
+    vertices: "np.ndarray"
+    faces: "np.ndarray"
+
+
 @dataclass(frozen=True)
 class SceneNode:
     """A named piece of output geometry, in world coordinates (metres, y up).
 
     ``path`` is the semantic node name, e.g. ``floor1/room3_Kitchen/wall2`` or
     ``floor0/room1_Livingroom/furniture/sofa``; ``kind`` is a :data:`NodeKind`. ``parts``
-    are the convex pieces of a furniture item (physics uses them as a compound body);
-    ``static`` bodies do not move.
+    are the convex pieces of a furniture item as arrays (:class:`MeshArrays`; physics uses
+    them as a compound body); ``static`` bodies do not move.
     ``item`` describes a furniture node (None for every other kind); ``extras`` are the
     labels of the other kinds (wall id, floor, shape path, ...), written to the glTF as
     they are. ``door`` is set on a door leaf: its hinge, angle and collision box
@@ -90,7 +105,7 @@ class SceneNode:
     mesh: "trimesh.Trimesh"
     extras: dict[str, Any] = field(default_factory=dict)
     static: bool = True
-    parts: tuple["trimesh.Trimesh", ...] = ()
+    parts: tuple[MeshArrays, ...] = ()
     item: ItemInfo | None = None
     door: "DoorLeaf | None" = None
     materials: tuple["Material", ...] = ()

@@ -42,7 +42,7 @@ from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
 from cga.model import FloorPlan
-from cga.scene import NodeKind, SceneNode
+from cga.scene import MeshArrays, NodeKind, SceneNode
 
 from ._solids import as_manifold
 
@@ -216,7 +216,7 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     return polygons[0] if len(polygons) == 1 else shapely.MultiPolygon(polygons)
 
 
-def _band_points(part: trimesh.Trimesh, y0: float, y1: float) -> np.ndarray:
+def _band_points(part: MeshArrays, y0: float, y1: float) -> np.ndarray:
     """The plan points whose hull is the shadow of the slice of a convex part between
     heights ``y0`` and ``y1``: its vertices in the band and its edges' crossings with
     the two planes."""
@@ -232,7 +232,7 @@ def _band_points(part: trimesh.Trimesh, y0: float, y1: float) -> np.ndarray:
     return np.concatenate(points)
 
 
-def _convex_shadows(parts: Sequence[trimesh.Trimesh], y0: float, y1: float) -> BaseGeometry:
+def _convex_shadows(parts: Sequence[MeshArrays], y0: float, y1: float) -> BaseGeometry:
     """The union of the shadows of the slices of convex parts between heights ``y0`` and
     ``y1``: each the hull of :func:`_band_points` (all hulls in one vectorised call), a
     degenerate hull (a part seen edge-on) thickened by :data:`_SHEET`."""

@@ -31,17 +31,20 @@ import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
 from cga.appearance.material import Material
 from cga.collision import ConvexPiece, collision_parts, shrink_part, structure_pieces
 from cga.errors import ExportError
-from cga.scene import Scene, SceneNode
+from cga.scene import MeshArrays, Scene, SceneNode
 
 from .frames import WORLD_TO_ROS, RosPose, pose_to_ros, world_to_ros
 from .obj import MeshGroup, mesh_groups
+
+if TYPE_CHECKING:  # pragma: no cover
+    import trimesh
 
 __all__ = ["Box", "Collider", "Link", "Joint", "World", "robot_world", "box_inertia",
            "centre_of_mass", "identifier", "ItemJoints"]
@@ -137,13 +140,16 @@ def box_inertia(mass: float, extents: Sequence[float]) -> tuple[float, float, fl
             mass * (a * a + b * b) / 12.0)
 
 
-def centre_of_mass(parts: Sequence[Any]) -> np.ndarray:
+def centre_of_mass(parts: "Sequence[MeshArrays | trimesh.Trimesh]") -> np.ndarray:
     """World centre of mass of solid convex parts of uniform density (the volume-weighted
     mean of their centroids); the bounding-box centre if they enclose no volume."""
-    solids = [p if p.is_volume else p.convex_hull for p in parts]
+    import trimesh
+
+    meshes = [trimesh.Trimesh(vertices=p.vertices, faces=p.faces, process=False) for p in parts]
+    solids = [m if m.is_volume else m.convex_hull for m in meshes]
     volumes = np.array([max(float(s.volume), 0.0) for s in solids])
     if volumes.sum() <= 0.0:
-        bounds = np.array([p.bounds for p in parts])
+        bounds = np.array([m.bounds for m in meshes])
         return (bounds[:, 0].min(axis=0) + bounds[:, 1].max(axis=0)) / 2
     return np.average([s.center_mass for s in solids], axis=0, weights=volumes)
 
@@ -258,7 +264,8 @@ def _item_link(node: SceneNode, name: str, items: ItemJoints
     item = node.item
     turns = item.rotation % 4 if item is not None else 0
     label = identifier(item.model if item is not None else "item")
-    parts = collision_parts(node) if not node.static else list(node.parts or (node.mesh,))
+    parts: list[MeshArrays | trimesh.Trimesh] = [
+        *(collision_parts(node) if not node.static else node.parts or (node.mesh,))]
     frame = _Frame(pose_to_ros(centre_of_mass(parts), 90.0 * turns))
     visual, used = frame.visual(node, label)
     material = visual[0].material if visual else "collision"

@@ -15,7 +15,7 @@ import trimesh
 from cga.doors import door_leaf, leaf_model_matrix, slab_range
 from cga.model import FloorPlan, FurnitureItem
 from cga.operations.furniture.library import FurnitureModel
-from cga.scene import ItemInfo, SceneNode
+from cga.scene import ItemInfo, MeshArrays, SceneNode
 
 __all__ = ["leaf_node"]
 
@@ -48,7 +48,7 @@ def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> Sc
         mesh=mesh,
         extras=leaf.labels(),
         static=True,
-        parts=(box,),
+        parts=(MeshArrays(np.asarray(box.vertices), np.asarray(box.faces)),),
         item=ItemInfo(model=model.name, model_path=model.path, room=item.room, name=item.name,
                       parent=item.parent, rotation=item.rotation, density=model.density,
                       mass=float(np.prod(extents)) * model.density, convex_parts=True),

@@ -12,7 +12,7 @@ import trimesh
 
 from cga.model import FloorPlan, FurnitureItem, rotation_matrix
 from cga.operations.furniture.library import FurnitureModel, ModelLibrary
-from cga.scene import ItemInfo, SceneNode
+from cga.scene import ItemInfo, MeshArrays, SceneNode
 
 __all__ = ["item_node", "item_transform"]
 
@@ -44,18 +44,27 @@ def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -
     return matrix
 
 
-def _posed(mesh: trimesh.Trimesh, matrix: np.ndarray) -> trimesh.Trimesh:
-    """A new mesh: ``mesh`` moved by ``matrix`` (from :func:`item_transform`), with its colours.
+def _posed(model: FurnitureModel, matrix: np.ndarray
+           ) -> tuple[trimesh.Trimesh, tuple[MeshArrays, ...]]:
+    """``model`` moved by ``matrix`` (from :func:`item_transform`): its mesh, with its
+    colours, and its parts as arrays.
 
-    Built directly from the moved vertices, which is several times faster than
+    The model's mesh is its parts one after another, so the parts' posed vertices are
+    slices of the mesh's, moved in one pass; the parts share the model's faces. The mesh
+    is built directly from the moved vertices, which is several times faster than
     ``mesh.copy().apply_transform(matrix)`` (a deep copy, then a second pass over the
     copy). The matrix turns and scales by positive factors, so the faces keep their
     winding.
     """
-    return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
-                           faces=mesh.faces.copy(),
-                           visual=mesh.visual.copy() if mesh.visual is not None else None,
+    source = model.mesh
+    vertices = trimesh.transform_points(source.vertices, matrix)
+    ends = np.cumsum([len(v) for v in model.geometry.vertices])
+    parts = tuple(MeshArrays(v, f) for v, f in
+                  zip(np.split(vertices, ends[:-1]), model.geometry.faces))
+    mesh = trimesh.Trimesh(vertices=vertices, faces=source.faces.copy(),
+                           visual=source.visual.copy() if source.visual is not None else None,
                            process=False)
+    return mesh, parts
 
 
 def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> SceneNode:
@@ -63,8 +72,8 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
 
     The node is named ``floor{i}/room{id}_{Type}/furniture/{name}`` (``room{id}`` when the
     room is untyped). Solid items are dynamic; details (doors, windows) and
-    non-colliding items (rugs) are static. ``parts`` are the posed convex parts, ``item``
-    carries the semantic labels and the mass (posed volume × the model's density).
+    non-colliding items (rugs) are static. ``parts`` are the posed convex parts (arrays,
+    :class:`~cga.scene.MeshArrays`), ``item`` carries the semantic labels and the mass (posed volume × the model's density).
 
     Raises
     ------
@@ -77,8 +86,7 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
 
         return leaf_node(item, plan, model)
     matrix = item_transform(item, model, plan.floor_y)
-    parts = tuple(_posed(p, matrix) for p in model.parts)
-    mesh = _posed(model.mesh, matrix)
+    mesh, parts = _posed(model, matrix)
     room = plan.room(item.room)
     # an affine map scales every volume (and convex hull volume) by |det|
     volume = model.volume * abs(float(np.linalg.det(matrix[:3, :3])))

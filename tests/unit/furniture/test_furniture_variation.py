@@ -114,7 +114,7 @@ def test_collision_parts_take_the_jittered_size(room_plan, library, tmp_path):
     sofa = next(i for i in plan.furniture if i.name == "sofa")
     assert sofa.size != library.get("sofa").size
     node = item_node(sofa, plan, library)
-    parts = np.vstack([p.bounds for p in node.parts])
+    parts = np.vstack([p.vertices for p in node.parts])
     bounds = np.array([parts.min(axis=0), parts.max(axis=0)])
     assert bounds == pytest.approx(node.mesh.bounds)
     extent = node.mesh.bounds[1] - node.mesh.bounds[0]

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import trimesh
 from shapely.geometry import box
 
 from cga.model import FloorPlan, FloorSettings, FurnitureItem, Room, front_vector
-from cga.meshing.items import item_node
+from cga.meshing.items import item_node, item_transform
+from cga.scene import MeshArrays
 from cga.operations.furniture.library import ModelLibrary
 from cga.resources import shipped_dir
 
@@ -32,6 +34,14 @@ def item(model: str = "chair", rotation: int = 0, size=None, **extra) -> Furnitu
                          size=own if size is None else size, **extra)
 
 
+def solid(part: MeshArrays) -> trimesh.Trimesh:
+    return trimesh.Trimesh(vertices=part.vertices, faces=part.faces, process=False)
+
+
+def bounds(part: MeshArrays) -> np.ndarray:
+    return np.array([part.vertices.min(axis=0), part.vertices.max(axis=0)])
+
+
 def test_chair_stands_on_the_floor_at_its_position():
     node = item_node(item(), plan(), LIBRARY)
     lo, hi = node.mesh.bounds
@@ -52,7 +62,7 @@ def test_path_kind_and_item_facts():
         "chair", 2, "chair1", "diningtable", 0)
     assert info.model_path == model.path and info.convex_parts
     assert info.density == model.density
-    assert info.mass == pytest.approx(model.density * sum(p.volume for p in node.parts))
+    assert info.mass == pytest.approx(model.density * sum(solid(p).volume for p in node.parts))
     assert node.extras == {}
     assert set(node.labels) == {"model", "room", "name", "parent", "rotation", "density",
                                 "mass", "convex_parts"}
@@ -65,8 +75,8 @@ def test_untyped_room_has_no_type_in_the_path():
 @pytest.mark.parametrize("rotation", [0, 1, 2, 3, -1, 5])
 def test_backrest_is_opposite_the_front(rotation):
     node = item_node(item(rotation=rotation), plan(), LIBRARY)
-    above_seat = [p for p in node.parts if p.bounds[0][1] > FLOOR_Y + 0.46]
-    backrest = np.mean([p.bounds.mean(axis=0) for p in above_seat], axis=0)
+    above_seat = [p for p in node.parts if bounds(p)[0][1] > FLOOR_Y + 0.46]
+    backrest = np.mean([bounds(p).mean(axis=0) for p in above_seat], axis=0)
     offset = backrest[[0, 2]] - np.array([4.0, 5.0])
     front = np.array(front_vector(rotation))
     assert np.dot(offset, front) < -0.1
@@ -77,8 +87,8 @@ def test_quarter_turn_faces_minus_x_and_swaps_the_footprint():
     assert front_vector(1) == pytest.approx((-1.0, 0.0))
     w, _, d = LIBRARY.get("sofa").size
     node = item_node(item("sofa", rotation=1), plan(), LIBRARY)
-    back = max(node.parts, key=lambda p: p.bounds[1][1])
-    assert back.bounds.mean(axis=0)[0] > 4.0
+    back = max(node.parts, key=lambda p: bounds(p)[1][1])
+    assert bounds(back).mean(axis=0)[0] > 4.0
     extents = node.mesh.extents
     assert (extents[0], extents[2]) == pytest.approx((d, w))
 
@@ -86,12 +96,30 @@ def test_quarter_turn_faces_minus_x_and_swaps_the_footprint():
 def test_parts_are_posed_like_the_mesh_and_stay_convex():
     node = item_node(item("officechair", rotation=3), plan(), LIBRARY)
     assert len(node.parts) == len(LIBRARY.get("officechair").parts)
-    lo = np.min([p.bounds[0] for p in node.parts], axis=0)
-    hi = np.max([p.bounds[1] for p in node.parts], axis=0)
+    lo = np.min([bounds(p)[0] for p in node.parts], axis=0)
+    hi = np.max([bounds(p)[1] for p in node.parts], axis=0)
     assert np.allclose([lo, hi], node.mesh.bounds)
-    for part in node.parts:
+    for part in map(solid, node.parts):
         assert part.is_watertight
         assert part.volume == pytest.approx(part.convex_hull.volume, rel=1e-3)
+
+
+@pytest.mark.parametrize("model,yaw,size", [("officechair", 0.0, None),
+                                            ("sofa", 0.3, (2.3, 0.8, 0.95)),
+                                            ("bookshelf", -1.1, None)])
+def test_parts_are_arrays_equal_to_each_model_part_moved_alone(model, yaw, size):
+    """The parts, sliced from the mesh moved in one pass, carry exactly the bits of
+    each model part moved on its own by trimesh (what every check read before)."""
+    placed = item(model, rotation=1, yaw=yaw, size=size)
+    node = item_node(placed, plan(), LIBRARY)
+    source = LIBRARY.get(model)
+    matrix = item_transform(placed, source, FLOOR_Y)
+    assert len(node.parts) == len(source.parts)
+    for part, own in zip(node.parts, source.parts):
+        assert isinstance(part, MeshArrays)
+        assert np.array_equal(part.vertices, trimesh.transform_points(own.vertices, matrix))
+        assert np.array_equal(part.faces, own.faces)
+    assert np.array_equal(np.vstack([p.vertices for p in node.parts]), node.mesh.vertices)
 
 
 def test_door_leaf_is_scaled_to_its_opening():
