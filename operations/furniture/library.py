@@ -25,11 +25,12 @@ need only sizes, and never import trimesh.
 
 from __future__ import annotations
 
+import importlib.util
 import io
 import math
+import os
 import re
 import zipfile
-from importlib.metadata import version
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import cache, cached_property
@@ -383,13 +384,22 @@ def load_model(path: Path) -> FurnitureModel:
 
 def _cache_key(data: bytes) -> str:
     """The on-disk cache key of a model file's bytes (a new trimesh parses anew)."""
-    return digest(_CACHE_FORMAT, _trimesh_version(), data)
+    return digest(_CACHE_FORMAT, _trimesh_install(), data)
 
 
 @cache
-def _trimesh_version() -> str:
-    """trimesh's installed version, read once: each lookup parses its metadata file."""
-    return version("trimesh")
+def _trimesh_install() -> str:
+    """Which trimesh parsed the cached models: where its package file is and when it was
+    written, so installing another version (or the same one again) misses the cache.
+
+    Read from the file system without importing trimesh (``cga check`` never imports
+    it) or its package metadata (``importlib.metadata`` costs more than the whole
+    model check)."""
+    spec = importlib.util.find_spec("trimesh")
+    if spec is None or spec.origin is None:
+        return "trimesh: not installed"
+    stat = os.stat(spec.origin)
+    return f"{spec.origin}:{stat.st_mtime_ns}:{stat.st_size}"
 
 
 def _is_cached(path: Path) -> bool:

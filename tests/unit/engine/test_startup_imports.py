@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[3]
-HEAVY = ("trimesh", "scipy", "pybullet", "manifold3d", "PIL", "networkx", "rich")
+HEAVY = ("trimesh", "scipy", "pybullet", "manifold3d", "PIL", "networkx", "rich", "email")
+"""Libraries a check or `--help` never needs (`email` comes with `importlib.metadata`)."""
 LAYOUT = ("cga.operations.furniture.solver", "cga.operations.floorplan.bsp",
           "cga.operations.floorplan.circulation", "cga.operations.roomtyping.assign",
           "cga.operations.roomtyping.room_graph")

@@ -103,3 +103,22 @@ def test_check_parses_a_file_the_cache_does_not_hold(cache, tmp_path):
     assert len(list(cache.glob("*.npz"))) == 1  # parsed now, so the next check reads none
     with pytest.raises(library.ModelFileError):
         models.check("broken")
+
+
+def test_another_trimesh_install_parses_again(cache, monkeypatch):
+    load_model(SHIPPED / "chair.obj")
+    monkeypatch.setattr(library, "_trimesh_install", lambda: "/elsewhere/trimesh/__init__.py:1:2")
+    parsed = []
+    real = library._parse_geometry
+    monkeypatch.setattr(library, "_parse_geometry",
+                        lambda path, text: parsed.append(path) or real(path, text))
+    assert load_model(SHIPPED / "chair.obj").name == "chair"
+    assert parsed == [SHIPPED / "chair.obj"]
+    assert len(list(cache.glob("*.npz"))) == 2
+
+
+def test_the_trimesh_install_is_read_without_importing_it():
+    import importlib.util
+
+    origin = importlib.util.find_spec("trimesh").origin
+    assert library._trimesh_install().startswith(f"{origin}:")
