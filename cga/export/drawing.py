@@ -16,7 +16,7 @@ import io
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from functools import cache
+from functools import cache, lru_cache
 from typing import Literal, Union
 from xml.sax.saxutils import escape, quoteattr
 
@@ -138,8 +138,10 @@ def _font(size_px: int, bold: bool) -> ImageFont.FreeTypeFont | ImageFont.ImageF
         return ImageFont.load_default(size_px)
 
 
+@lru_cache(maxsize=4096)
 def text_width(text: str, size: float, *, bold: bool = False) -> float:
-    """Width in pixels of ``text`` at font size ``size`` (pixels)."""
+    """Width in pixels of ``text`` at font size ``size`` (pixels); remembered, as a plan
+    measures the same labels at several sizes while it looks for room."""
     scale = 8
     return _font(max(1, round(size * scale)), bold).getlength(text) / scale
 
@@ -275,15 +277,16 @@ class _PngPainter:
             fill = _rgba(item.style.fill, item.style.opacity)
             if len(rings) == 1:
                 self.draw.polygon(rings[0], fill=fill)
-            else:  # holes: paint through a mask
+            else:  # holes: paint through a mask, only over the box the outline covers
                 mask = Image.new("L", self.image.size, 0)
                 mask_draw = ImageDraw.Draw(mask)
-                mask_draw.polygon(rings[0], fill=255)
+                mask_draw.polygon(rings[0], fill=fill[3])
                 for hole in rings[1:]:
                     mask_draw.polygon(hole, fill=0)
-                layer = Image.new("RGBA", self.image.size, fill)
-                self.image.paste(layer, (0, 0), Image.composite(
-                    Image.new("L", mask.size, fill[3]), mask, mask))
+                box = mask.getbbox()
+                if box is not None:
+                    layer = Image.new("RGBA", (box[2] - box[0], box[3] - box[1]), fill)
+                    self.image.paste(layer, box, mask.crop(box))
         for ring in rings:
             self._stroke(ring + ring[:1], item.style)
 
@@ -315,6 +318,20 @@ class _PngPainter:
         self.image.alpha_composite(turned, (round(x - ax), round(y - ay)))
 
 
+def _reduce_rgb(image: Image.Image, factor: int) -> Image.Image:
+    """The colour of ``image`` (RGBA) averaged over ``factor`` × ``factor`` blocks, as RGB.
+
+    The page's alpha is the painter's bookkeeping (what an opacity or a text edge left
+    behind), not part of the picture: the PNG keeps red, green and blue. Pillow's public
+    ``Image.reduce`` averages an RGBA image premultiplied (two conversions of the whole
+    supersampled canvas and a weighting by alpha); its core box average treats each band
+    on its own, so averaging first and dropping alpha on the small image gives the bytes
+    of ``image.convert("RGB").reduce(factor)`` without a pass over the large canvas.
+    """
+    averaged = image._new(image.im.reduce((factor, factor), (0, 0, *image.size)))
+    return averaged.convert("RGB")
+
+
 def render_png(drawing: Drawing, *, supersample: int = 3) -> bytes:
     """The drawing as PNG bytes (RGB), anti-aliased by drawing at ``supersample`` × size
     and averaging each ``supersample`` × ``supersample`` block of pixels.
@@ -337,7 +354,7 @@ def render_png(drawing: Drawing, *, supersample: int = 3) -> bytes:
                 painter.arc(item)
             else:
                 painter.text(item)
-    final = painter.image.convert("RGB").reduce(supersample)
+    final = _reduce_rgb(painter.image, supersample)
     buffer = io.BytesIO()
     final.save(buffer, format="PNG")
     return buffer.getvalue()

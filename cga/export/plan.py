@@ -131,15 +131,16 @@ def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
     height = max(paper.top + plan_h + _FOOTER + 30, paper.top + 120 + 22 * legend_rows)
     drawing = Drawing(width=math.ceil(column_x + _COLUMN_WIDTH), height=math.ceil(height),
                       title=title, background="#fcfbf8")
+    footprints = [(item, item.footprint()) for item in plan.furniture if not item.is_detail]
     _draw_rooms(drawing, paper, plan)
-    _draw_furniture(drawing, paper, plan)
+    _draw_furniture(drawing, paper, footprints)
     draw_stairs(drawing, plan, paper.point)
     _draw_walls(drawing, paper, plan)
     _draw_windows(drawing, paper, plan)
     _draw_doors(drawing, paper, plan)
     if entrance is not None:
         _draw_entrance(drawing, paper, entrance)
-    _draw_room_labels(drawing, paper, plan)
+    _draw_room_labels(drawing, paper, plan, [footprint for _, footprint in footprints])
     drawing.add("annotation", Text((_MARGIN, 36.0), title, 20, _INK, "start", bold=True,
                                    css_class="title"))
     if subtitle:
@@ -208,11 +209,10 @@ def _item_label(item: FurnitureItem) -> str:
     return re.sub(r"(?<=[a-z])(?=[A-Z])", " ", base).replace("_", " ").lower()
 
 
-def _draw_furniture(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
-    for item in plan.furniture:
-        if item.is_detail:
-            continue
-        footprint = item.footprint()
+def _draw_furniture(drawing: Drawing, paper: _Paper,
+                    footprints: Sequence[tuple[FurnitureItem, Polygon]]) -> None:
+    """The items with their footprints (detail items such as door leaves left out)."""
+    for item, footprint in footprints:
         ring = paper.ring(footprint.exterior.coords[:-1])
         if item.non_collision:
             drawing.add("furniture", Polyline(ring, _RUG, closed=True, css_class="furniture rug"))
@@ -277,14 +277,14 @@ def _open_point(region: BaseGeometry) -> tuple[float, float]:
     return (centre.x, centre.y)
 
 
-def _draw_room_labels(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
+def _draw_room_labels(drawing: Drawing, paper: _Paper, plan: FloorPlan,
+                      furniture: Sequence[Polygon]) -> None:
     """Type and area of every room, placed where the label box fits on free floor
-    (clear of furniture, door swings and stairs if possible), shrinking the font if
-    needed."""
+    (clear of the ``furniture`` footprints, door swings and stairs if possible),
+    shrinking the font if needed."""
     swings = [ShapelyPoint(*door.position).buffer(door.width + 0.05) for door in plan.doors]
     stairs = [stair.polygon.buffer(0.05) for stair in plan.stairs]  # the core's label: landing
-    obstacles = unary_union([f.footprint().buffer(0.05) for f in plan.furniture
-                             if not f.is_detail] + swings + stairs)
+    obstacles = unary_union([f.buffer(0.05) for f in furniture] + swings + stairs)
     for room in plan.rooms:
         interior = room.interior if not room.interior.is_empty else room.polygon
         name, area = _room_name(room), f"{room.area:.1f} m²"

@@ -107,3 +107,54 @@ def test_renderers_agree_on_primitives():
     # the arc starts at angle 0 (x = 90, y = 40) and bends clockwise on screen to y > 40
     assert image[40, 90, 0] > 200 and image[40, 90, 1] < 120
     assert image[60, 82, 0] > 200 and image[60, 82, 1] < 120  # angle 0.75: (81.9, 60.4)
+
+
+def _old_png_pixels(drawing, scale=3):
+    """The page painted the plain way: a holed area pasted through a whole-canvas layer
+    and mask, then the whole supersampled RGBA canvas converted to RGB and averaged."""
+    from PIL import ImageDraw
+
+    size = (drawing.width * scale, drawing.height * scale)
+    image = Image.new("RGBA", size, (255, 255, 255, 255))
+    draw = ImageDraw.Draw(image, "RGBA")
+    for item in (i for items in drawing.layers.values() for i in items):
+        rings = [[(x * scale, y * scale) for x, y in ring] for ring in item.rings]
+        color = item.style.fill
+        fill = (int(color[1:3], 16), int(color[3:5], 16), int(color[5:7], 16),
+                round(255 * item.style.opacity))
+        if len(rings) == 1:
+            draw.polygon(rings[0], fill=fill)
+            continue
+        mask = Image.new("L", size, 0)
+        ImageDraw.Draw(mask).polygon(rings[0], fill=255)
+        for hole in rings[1:]:
+            ImageDraw.Draw(mask).polygon(hole, fill=0)
+        image.paste(Image.new("RGBA", size, fill), (0, 0),
+                    Image.composite(Image.new("L", size, fill[3]), mask, mask))
+    return np.asarray(image.convert("RGB").reduce(scale))
+
+
+def test_png_of_areas_with_holes_matches_whole_canvas_painting():
+    from cga.export.drawing import Area
+
+    drawing = Drawing(width=90, height=70, title="holes")
+    drawing.add("a", Area((((5.3, 4.1), (60.2, 8.7), (44.9, 66.6)),), Style(fill="#3070a0",
+                                                                           opacity=0.72)))
+    outer = ((10.5, 10.5), (80.25, 12.0), (78.0, 60.4), (12.2, 58.0))
+    holes = (((20.1, 20.6), (40.3, 21.0), (30.0, 40.7)), ((50.5, 30.2), (70.0, 30.0),
+                                                        (70.0, 50.5), (50.0, 49.9)))
+    drawing.add("a", Area((outer, *holes), Style(fill="#c0392b", opacity=0.5)))
+    drawing.add("a", Area((outer, holes[1]), Style(fill="#35312d")))
+    png = Image.open(io.BytesIO(render_png(drawing)))
+    assert png.mode == "RGB"
+    assert np.array_equal(np.asarray(png), _old_png_pixels(drawing))
+
+
+def test_colour_averaged_before_alpha_is_dropped_equals_dropped_then_averaged():
+    from cga.export.drawing import _reduce_rgb
+
+    rng = np.random.default_rng(7)
+    for width, height in ((30, 21), (31, 23)):  # whole blocks and a ragged edge
+        page = Image.fromarray(rng.integers(0, 256, (height, width, 4), dtype=np.uint8), "RGBA")
+        expected = page.convert("RGB").reduce(3)
+        assert _reduce_rgb(page, 3).tobytes() == expected.tobytes()
