@@ -183,7 +183,7 @@ def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette, models
         cache[item.model] = _model_parts(models.get(item.model))  # type: ignore[attr-defined]
     parts, index = cache[item.model]
     key = (f"floor{plan.index}", f"room{item.room}") if plan is not None else ()
-    materials = [palette.part(item.model, name, color, key=key) for name, color in parts]
+    materials = palette.parts(item.model, parts, key=key)
     if len(index) != len(node.mesh.faces):  # a mesh not made from the model's parts
         return materials[:1], np.zeros(len(node.mesh.faces), dtype=np.int64)
     return materials, index

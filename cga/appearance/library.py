@@ -27,7 +27,8 @@ from __future__ import annotations
 
 import colorsys
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -101,12 +102,17 @@ class MaterialRow:
 
 @dataclass(frozen=True)
 class MaterialLibrary:
-    """The rows of a material table, in table order, and the file they came from."""
+    """The rows of a material table, in table order, and the file they came from.
+
+    A library serves every build of a process (a batch dresses thousands of houses from
+    one table), so its answers are remembered per question."""
 
     rows: tuple[MaterialRow, ...]
     file: str
+    _answers: dict[tuple[object, ...], object] = field(default_factory=dict, init=False,
+                                                       repr=False, compare=False)
 
-    @property
+    @cached_property
     def part_classes(self) -> tuple[str, ...]:
         """Surface classes that furniture parts may name (every class but the structure's)."""
         return tuple(sorted({r.surface for r in self.rows} - set(STRUCTURE_SURFACES)))
@@ -114,12 +120,20 @@ class MaterialLibrary:
     def candidates(self, surface: str, *, model: str | None = None, part: str | None = None,
                    room: str | None = None) -> list[MaterialRow]:
         """Rows of ``surface`` allowed for the model, part and room, in table order."""
-        return [r for r in self.rows if r.surface == surface and r.allows(model, part, room)]
+        question = ("candidates", surface, model, part, room)
+        if question not in self._answers:
+            self._answers[question] = tuple(r for r in self.rows if r.surface == surface
+                                            and r.allows(model, part, room))
+        return list(self._answers[question])  # type: ignore[call-overload]
 
     def targets(self, model: str, part: str) -> bool:
         """Whether some row names this part of this model specifically."""
-        return any(part.lower() in r.parts and (not r.models or model.lower() in r.models)
-                   for r in self.rows)
+        question = ("targets", model, part)
+        if question not in self._answers:
+            self._answers[question] = any(
+                part.lower() in r.parts and (not r.models or model.lower() in r.models)
+                for r in self.rows)
+        return bool(self._answers[question])
 
 
 def part_class(group_name: str, classes: tuple[str, ...]) -> str:

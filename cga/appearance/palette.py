@@ -19,6 +19,7 @@ are asked for.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Literal
 
 import numpy as np
@@ -46,6 +47,7 @@ class Palette:
         self.mode = mode
         self._chosen: dict[tuple[str, ...], Material] = {}
         self._parts: dict[tuple[str, str], tuple[str, bool]] = {}
+        self._part_lists: dict[tuple[str, ...], list[Material]] = {}
 
     def surface(self, surface: str, *, room_type: str | None = None,
                 key: tuple[str, ...] = ()) -> Material:
@@ -73,6 +75,17 @@ class Palette:
             rows = self.library.candidates(surface, model=model, part=part)
             self._chosen[full] = self._pick(rows, full, color)
         return self._chosen[full]
+
+    def parts(self, model: str, parts: Sequence[tuple[str, RGB]], *,
+              key: tuple[str, ...] = ()) -> list[Material]:
+        """:meth:`part` of each ``(part, colour)`` of ``model`` (a model's part list, the
+        same for every item of it: asked once per model and key, as the chairs of a
+        room share one answer)."""
+        full = ("parts", model, *key)
+        if full not in self._part_lists:
+            self._part_lists[full] = [self.part(model, name, color, key=key)
+                                      for name, color in parts]
+        return list(self._part_lists[full])
 
     def _part_surface(self, part: str) -> str:
         surface = part_class(part, self.library.part_classes)
