@@ -10,8 +10,8 @@ Structure (walls, slabs, masses) is meshed in the building's frame. Every item i
 with its own pivot: a furniture item at the centre of its footprint on the floor, turned
 by its quarter turns; a door leaf at its hinge, turned by the build's door angle
 (:mod:`cga.doors`). Their meshes are given in that local frame, so instances of the same
-model (same size) share one glTF mesh, and a viewer or Blender turns an item or swings a
-door about the right point. Meshes carry normals. A node's ``extras`` are its semantic
+model (same size) share one glTF mesh, made (normals and all) once, and a viewer or
+Blender turns an item or swings a door about the right point. Meshes carry normals. A node's ``extras`` are its semantic
 labels plus its ``kind`` and ``static`` flag, its semantic ``class_id`` and ``class`` and
 its ``instance_id`` (:mod:`cga.semantics`); y up, metres.
 
@@ -87,18 +87,35 @@ def node_pivot(node: SceneNode) -> np.ndarray:
     return matrix
 
 
-def _local_meshes(node: SceneNode, pivot: np.ndarray) -> list[Any]:
-    """The node's mesh in its pivot's frame, without metadata (which trimesh would write
-    as mesh extras): one mesh per material of the node (:attr:`SceneNode.materials`),
-    each with its PBR material, which become the primitives of one glTF mesh. A node
-    without materials (not dressed) keeps its own colours, or gets its kind's colour."""
+def _local_vertices(node: SceneNode, pivot: np.ndarray) -> np.ndarray:
+    """The node's vertices in its pivot's frame, on a micrometre grid, so instances of one
+    model land on identical local vertices."""
+    inverse = np.linalg.inv(pivot)
+    vertices = np.asarray(node.mesh.vertices, dtype=float) @ inverse[:3, :3].T + inverse[:3, 3]
+    return np.round(vertices, 6) + 0.0
+
+
+def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Material, ...]] | None:
+    """What a dressed node's glTF mesh is made of (local vertices, faces, each face's
+    material): nodes with equal keys get equal meshes, so the mesh is made once (the
+    instances of a model share it). None for a node without materials."""
+    if not node.materials or node.face_materials is None:
+        return None
+    digest = hashlib.sha1(np.ascontiguousarray(vertices).tobytes())
+    digest.update(np.ascontiguousarray(node.mesh.faces, dtype=np.int64).tobytes())
+    digest.update(np.ascontiguousarray(node.face_materials, dtype=np.int64).tobytes())
+    return digest.digest(), node.materials
+
+
+def _local_meshes(node: SceneNode, vertices: np.ndarray) -> list[Any]:
+    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`), without
+    metadata (which trimesh would write as mesh extras): one mesh per material of the node
+    (:attr:`SceneNode.materials`), each with its PBR material, which become the
+    primitives of one glTF mesh. A node without materials (not dressed) keeps its own
+    colours, or gets its kind's colour."""
     import trimesh
 
     source = node.mesh
-    inverse = np.linalg.inv(pivot)
-    vertices = np.asarray(source.vertices, dtype=float) @ inverse[:3, :3].T + inverse[:3, 3]
-    # micrometre grid: instances of one model land on identical local vertices
-    vertices = np.round(vertices, 6) + 0.0
     faces = np.asarray(source.faces)
     if not node.materials or node.face_materials is None:
         visual = source.visual
@@ -159,6 +176,8 @@ def _give_every_vertex_a_normal(mesh: Any) -> None:
 
 
 def _mesh_key(meshes: Sequence[Any]) -> str:
+    """A digest of the primitives of a glTF mesh: their vertices, faces and colours
+    (vertex colours, or their material's name and base colour)."""
     digest = hashlib.sha1()
     for mesh in meshes:
         digest.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
@@ -168,8 +187,11 @@ def _mesh_key(meshes: Sequence[Any]) -> str:
             digest.update(np.ascontiguousarray(visual.vertex_colors).tobytes())
         else:
             material = visual.material
+            base = getattr(material, "baseColorFactor", None)
             digest.update(repr((getattr(material, "name", None),
-                                getattr(material, "baseColorFactor", None))).encode())
+                                None if base is None else (str(np.asarray(base).dtype),
+                                                          np.asarray(base).tolist()))
+                               ).encode())
     return digest.hexdigest()
 
 
@@ -211,7 +233,8 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     groups = _group_extras(scene)
     made: set[str] = set()
     seen: set[str] = set()
-    meshes: dict[str, str] = {}
+    meshes: dict[str, str] = {}  # mesh digest (_mesh_key) → geometry name
+    made_from: dict[tuple[bytes, tuple[Material, ...]], str] = {}  # _source_key → name
     instances = instance_ids(nodes)
     names = class_names()
     for node in nodes:
@@ -227,16 +250,23 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
             raise ExportError(f"node {node.path!r}: {error}") from None
         parent = _parent(tm_scene, node.path, root, groups, made)
         pivot = node_pivot(node)
-        pieces = _local_meshes(node, pivot)
-        key = _mesh_key(pieces)
-        if key not in meshes:
-            base = node.item.model if node.item is not None else node.path
-            meshes[key] = base if base not in tm_scene.geometry else f"{base}#{len(meshes)}"
-            tm_scene.geometry[meshes[key]] = pieces[0]
-            for k, piece in enumerate(pieces[1:], start=1):
-                tm_scene.geometry[f"{meshes[key]}{_PRIMITIVE}{k}"] = piece
+        vertices = _local_vertices(node, pivot)
+        source = _source_key(node, vertices)
+        name = made_from.get(source) if source is not None else None
+        if name is None:
+            pieces = _local_meshes(node, vertices)
+            key = _mesh_key(pieces)
+            if key not in meshes:
+                base = node.item.model if node.item is not None else node.path
+                meshes[key] = base if base not in tm_scene.geometry else f"{base}#{len(meshes)}"
+                tm_scene.geometry[meshes[key]] = pieces[0]
+                for k, piece in enumerate(pieces[1:], start=1):
+                    tm_scene.geometry[f"{meshes[key]}{_PRIMITIVE}{k}"] = piece
+            name = meshes[key]
+            if source is not None:
+                made_from[source] = name
         tm_scene.graph.update(frame_from=parent, frame_to=node.path, matrix=pivot,
-                              geometry=meshes[key], metadata=extras)
+                              geometry=name, metadata=extras)
         made.add(node.path)
     lights = _add_lights(tm_scene, scene, root, groups, made)
     tm_scene.metadata.update(json_safe({"generator": "cga", "name": scene.name,

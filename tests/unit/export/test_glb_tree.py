@@ -85,3 +85,23 @@ def test_items_have_pivots_and_share_meshes_with_normals(glb):
                             for transform, geometry in (loaded.graph[f] for f in frames)])
         assert np.allclose([placed.min(axis=0), placed.max(axis=0)], node.mesh.bounds,
                            atol=1e-5), node.path
+
+
+def test_a_mesh_shared_by_instances_is_made_once_and_writes_the_same_bytes(glb, monkeypatch):
+    """The exporter makes each distinct mesh once (instances of a model at one size
+    share it); making every node's mesh anew, as the exporter once did, writes the very
+    same file."""
+    import cga.export.glb as glb_module
+
+    scene, nodes, data, doc = glb
+    made = []
+    original = glb_module._local_meshes
+    monkeypatch.setattr(glb_module, "_local_meshes",
+                        lambda node, vertices: made.append(node.path) or original(node, vertices))
+    assert scene_as_glb(scene, nodes) == data
+    items = [n for n in nodes if n.kind == "furniture"]
+    assert len(made) < len(nodes) and len({n.item.model for n in items}) <= len(made)
+    made.clear()
+    monkeypatch.setattr(glb_module, "_source_key", lambda node, vertices: None)
+    assert scene_as_glb(scene, nodes) == data
+    assert len(made) == len(nodes)
