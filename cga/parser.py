@@ -14,7 +14,7 @@ source attached.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from functools import cache
+from functools import cache, lru_cache
 from pathlib import Path
 
 from lark import Lark, Token
@@ -31,6 +31,7 @@ from .textfiles import read_input_bytes
 __all__ = ["parse", "parse_file", "read_grammar"]
 
 
+@lru_cache(maxsize=8)
 def parse(text: str, file: str = "<string>") -> ast.Grammar:
     """Parse grammar source text into a :class:`cga.ast.Grammar`.
 
@@ -56,7 +57,8 @@ def parse(text: str, file: str = "<string>") -> ast.Grammar:
     Notes
     -----
     Linear in the length of the text (LALR(1)); the lark parser is built once per
-    process. A leading byte-order mark is skipped (columns count as an editor shows them).
+    process, and the last few texts' trees are kept (the tree is immutable; a batch
+    builds every house from one text). A leading byte-order mark is skipped (columns count as an editor shows them).
     """
     text = text.removeprefix("\ufeff")
     try:
