@@ -107,28 +107,25 @@ def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Mat
     return digest.digest(), node.materials
 
 
-def _local_meshes(node: SceneNode, vertices: np.ndarray) -> list[Any]:
-    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`), without
-    metadata (which trimesh would write as mesh extras): one mesh per material of the node
-    (:attr:`SceneNode.materials`), each with its PBR material, which become the
-    primitives of one glTF mesh. A node without materials (not dressed) keeps its own
-    colours, or gets its kind's colour."""
+def _local_meshes(node: SceneNode, vertices: np.ndarray, looks: _Looks) -> list[Any]:
+    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`), with normals
+    and without metadata (which trimesh would write as mesh extras): one mesh per
+    material of the node (:attr:`SceneNode.materials`), each with its PBR material, which
+    become the primitives of one glTF mesh. A node without materials (not dressed) keeps
+    its own colours, or gets its kind's colour."""
     import trimesh
 
     source = node.mesh
-    faces = np.asarray(source.faces)
+    faces = np.asarray(source.faces, dtype=np.int64)
+    normals = _vertex_normals(vertices, faces)
     if not node.materials or node.face_materials is None:
         visual = source.visual
         if visual is None or visual.kind is None:
-            visual = _pbr(kind_material(node.kind))
+            visual = looks.visual(kind_material(node.kind))
         else:
             visual = visual.copy()
-        mesh = trimesh.Trimesh(vertices=vertices, faces=faces, visual=visual, process=False)
-        _give_every_vertex_a_normal(mesh)
-        return [mesh]
-    whole = trimesh.Trimesh(vertices=vertices, faces=faces, process=False)
-    _give_every_vertex_a_normal(whole)
-    normals = np.asarray(whole.vertex_normals)
+        return [trimesh.Trimesh(vertices=vertices, faces=faces, vertex_normals=normals,
+                                visual=visual, process=False)]
     pieces = []
     for k, material in enumerate(node.materials):
         chosen = faces[node.face_materials == k]
@@ -136,43 +133,67 @@ def _local_meshes(node: SceneNode, vertices: np.ndarray) -> list[Any]:
             continue
         used, local = np.unique(chosen, return_inverse=True)
         pieces.append(trimesh.Trimesh(vertices=vertices[used], faces=local.reshape(-1, 3),
-                                      vertex_normals=normals[used], visual=_pbr(material),
-                                      process=False))
+                                      vertex_normals=normals[used],
+                                      visual=looks.visual(material), process=False))
     return pieces
 
 
-def _pbr(material: Material) -> Any:
-    """A trimesh visual carrying ``material`` as a glTF metallic-roughness material."""
-    import trimesh
-    from trimesh.visual.material import PBRMaterial
+class _Looks:
+    """The glTF metallic-roughness material of each :class:`Material`, made once per file
+    and shared by every primitive that wears it (trimesh writes equal materials once)."""
 
-    pbr = PBRMaterial(name=material.name, baseColorFactor=material.linear_rgba(),
-                      metallicFactor=material.metallic, roughnessFactor=material.roughness,
-                      alphaMode="BLEND" if material.transparent else None,
-                      doubleSided=material.transparent)
-    return trimesh.visual.TextureVisuals(material=pbr)
+    def __init__(self) -> None:
+        self._made: dict[Material, Any] = {}
+
+    def visual(self, material: Material) -> Any:
+        """A trimesh visual carrying ``material``."""
+        import trimesh
+        from trimesh.visual.material import PBRMaterial
+
+        pbr = self._made.get(material)
+        if pbr is None:
+            pbr = self._made[material] = PBRMaterial(
+                name=material.name, baseColorFactor=material.linear_rgba(),
+                metallicFactor=material.metallic, roughnessFactor=material.roughness,
+                alphaMode="BLEND" if material.transparent else None,
+                doubleSided=material.transparent)
+        return trimesh.visual.TextureVisuals(material=pbr)
 
 
-def _give_every_vertex_a_normal(mesh: Any) -> None:
-    """Replace averaged vertex normals of (nearly) zero length by the normal of one of
-    the vertex's faces that has one (else +y). A vertex where faces facing opposite ways
-    meet (a stair's tread edge on its landing) averages to nothing, and one of only
-    degenerate (zero-area) triangles has no normal at all, which glTF forbids (the
-    Khronos validator's ACCESSOR_VECTOR3_NON_UNIT)."""
-    if len(mesh.faces) == 0:
-        return
-    normals = np.array(mesh.vertex_normals)
+def _vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Unit normals of a mesh's vertices: trimesh's mean of the normals of the faces
+    around each vertex weighted by their corner angles (Thürrner & Wüthrich 1998,
+    :func:`trimesh.geometry.weighted_vertex_normals`), computed from the arrays
+    rather than through a trimesh object, whose caching costs more than the sums.
+
+    A vertex whose mean has (nearly) zero length takes the normal of one of its faces
+    that has one (else +y). A vertex where faces facing opposite ways meet (a stair's
+    tread edge on its landing) averages to nothing, and one of only degenerate
+    (zero-area) triangles has no normal at all, which glTF forbids (the Khronos
+    validator's ACCESSOR_VECTOR3_NON_UNIT)."""
+    from trimesh import geometry, triangles
+
+    if len(faces) == 0:
+        return np.zeros((len(vertices), 3))
+    corners = vertices[faces]
+    unit, valid = triangles.normals(triangles=corners, crosses=triangles.cross(corners))
+    face_normals = unit
+    if not valid.all():  # degenerate triangles: zero normals, as trimesh pads them
+        face_normals = np.zeros((len(faces), 3))
+        face_normals[valid] = unit
+    normals = geometry.weighted_vertex_normals(vertex_count=len(vertices), faces=faces,
+                                               face_normals=face_normals,
+                                               face_angles=triangles.angles(corners))
     flat = np.linalg.norm(normals, axis=1) < 0.5
     if flat.any():
-        faces = np.asarray(mesh.vertex_faces[flat])  # padded with -1
-        face_normals = np.vstack([mesh.face_normals, [[0.0, 0.0, 0.0]]])
-        candidates = face_normals[faces]  # -1 picks the zero row
+        around = geometry.vertex_face_indices(
+            len(vertices), faces, geometry.index_sparse(len(vertices), faces))[flat]
+        candidates = np.vstack([face_normals, [[0.0, 0.0, 0.0]]])[around]  # -1: zero row
         usable = np.linalg.norm(candidates, axis=2) > 0.5
-        first = np.argmax(usable, axis=1)
-        chosen = candidates[np.arange(len(faces)), first]
+        chosen = candidates[np.arange(len(around)), np.argmax(usable, axis=1)]
         chosen[~usable.any(axis=1)] = (0.0, 1.0, 0.0)
         normals[flat] = chosen
-        mesh.vertex_normals = normals
+    return normals
 
 
 def _mesh_key(meshes: Sequence[Any]) -> str:
@@ -235,6 +256,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     seen: set[str] = set()
     meshes: dict[str, str] = {}  # mesh digest (_mesh_key) → geometry name
     made_from: dict[tuple[bytes, tuple[Material, ...]], str] = {}  # _source_key → name
+    looks = _Looks()
     instances = instance_ids(nodes)
     names = class_names()
     for node in nodes:
@@ -254,7 +276,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
         source = _source_key(node, vertices)
         name = made_from.get(source) if source is not None else None
         if name is None:
-            pieces = _local_meshes(node, vertices)
+            pieces = _local_meshes(node, vertices, looks)
             key = _mesh_key(pieces)
             if key not in meshes:
                 base = node.item.model if node.item is not None else node.path

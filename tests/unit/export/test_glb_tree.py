@@ -97,7 +97,7 @@ def test_a_mesh_shared_by_instances_is_made_once_and_writes_the_same_bytes(glb, 
     made = []
     original = glb_module._local_meshes
     monkeypatch.setattr(glb_module, "_local_meshes",
-                        lambda node, vertices: made.append(node.path) or original(node, vertices))
+                        lambda node, *rest: made.append(node.path) or original(node, *rest))
     assert scene_as_glb(scene, nodes) == data
     items = [n for n in nodes if n.kind == "furniture"]
     assert len(made) < len(nodes) and len({n.item.model for n in items}) <= len(made)
@@ -105,3 +105,36 @@ def test_a_mesh_shared_by_instances_is_made_once_and_writes_the_same_bytes(glb, 
     monkeypatch.setattr(glb_module, "_source_key", lambda node, vertices: None)
     assert scene_as_glb(scene, nodes) == data
     assert len(made) == len(nodes)
+
+
+def test_vertex_normals_are_trimesh_s_and_every_one_is_a_unit_vector(glb):
+    """Normals computed from the arrays are bit for bit those of a trimesh object of the
+    same mesh wherever those have length; elsewhere (a stair's tread edge, where
+    opposite faces meet) they are the unit normal of one of the vertex's faces."""
+    from cga.export.glb import _vertex_normals
+
+    _, nodes, _, _ = glb
+    replaced = 0
+    for node in nodes:
+        vertices = np.asarray(node.mesh.vertices, dtype=float)
+        faces = np.asarray(node.mesh.faces, dtype=np.int64)
+        normals = _vertex_normals(vertices, faces)
+        own = trimesh.Trimesh(vertices=vertices, faces=faces, process=False)
+        expected = np.asarray(own.vertex_normals)
+        kept = np.linalg.norm(expected, axis=1) >= 0.5
+        assert np.array_equal(normals[kept], expected[kept]), node.path
+        assert np.allclose(np.linalg.norm(normals, axis=1), 1.0), node.path
+        for v in np.flatnonzero(~kept):
+            around = own.face_normals[np.any(faces == v, axis=1)]
+            assert np.any(np.all(np.isclose(around, normals[v]), axis=1)), node.path
+        replaced += int((~kept).sum())
+    assert replaced  # the house's stair has such vertices
+
+
+def test_a_vertex_of_only_degenerate_triangles_points_up():
+    from cga.export.glb import _vertex_normals
+
+    vertices = np.array([[0, 0, 0], [0, 0, -1], [1, 0, 0], [2, 0, 0], [3, 0, 0], [4, 0, 0.0]])
+    faces = np.array([[0, 1, 2], [3, 4, 5]])  # facing down; the second a line, no area
+    normals = _vertex_normals(vertices, faces)
+    assert np.allclose(normals[:3], [0, -1, 0]) and np.allclose(normals[3:], [0, 1, 0])
