@@ -6,10 +6,14 @@ import math
 
 import numpy as np
 import pytest
+import shapely
 import trimesh
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from shapely.geometry import box
 
 from cga.checks import band_footprint, occupancy_grid
+from cga.checks.occupancy import band_footprints
 from cga.scene import SceneNode
 
 RES = 0.05
@@ -157,3 +161,42 @@ def test_occupied_by_is_the_same_when_asked_again(kit, two_rooms):
         assert np.array_equal(grid.occupied_by(chosen), fresh)
     assert np.array_equal(first, grid.occupied_by(paths))
     assert first.any()
+
+
+def _convex_node(name: str, clouds) -> SceneNode:
+    """A furniture node whose parts are the convex hulls of point clouds."""
+    parts = tuple(trimesh.convex.convex_hull(np.asarray(c, dtype=float)) for c in clouds)
+    mesh = trimesh.util.concatenate(parts)
+    return SceneNode(f"floor0/room0/furniture/{name}", "furniture", mesh, parts=parts)
+
+
+def _clipped_shadow(part: trimesh.Trimesh, y0: float, y1: float):
+    """The straightforward shadow of a convex part's slice: cut by the two planes with
+    trimesh, then the plan hull of what is left (an independent computation)."""
+    piece = trimesh.intersections.slice_mesh_plane(part, (0, 1, 0), (0, y0, 0), cap=True)
+    if len(piece.faces):
+        piece = trimesh.intersections.slice_mesh_plane(piece, (0, -1, 0), (0, y1, 0), cap=True)
+    if not len(piece.faces):
+        return box(0, 0, 0, 0)
+    return shapely.MultiPoint(np.asarray(piece.vertices)[:, [0, 2]]).convex_hull
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), nodes=st.integers(1, 6),
+       band=st.tuples(st.floats(0.0, 1.0), st.floats(0.05, 1.5)))
+def test_convex_shadows_of_many_nodes_match_each_part_clipped_alone(seed, nodes, band):
+    """All nodes' convex parts are sliced and hulled in one vectorised pass: each node's
+    shadow is exactly what it gets alone, and it matches the union of its parts clipped
+    one by one with trimesh."""
+    rng = np.random.default_rng(seed)
+    y0, y1 = band[0], band[0] + band[1]
+    made = [_convex_node(f"item{k}", [rng.uniform(-1, 1, (8, 3)) * rng.uniform(0.1, 1.0, 3)
+                                      + rng.uniform([-3, 0.6, -3], [3, 1.5, 3])
+                                      for _ in range(int(rng.integers(1, 5)))])
+            for k in range(nodes)]
+    together = band_footprints(made, y0, y1)
+    for node, shadow in zip(made, together):
+        alone = band_footprint(node, y0, y1)
+        assert shapely.to_wkb(shadow) == shapely.to_wkb(alone)
+        expected = shapely.union_all([_clipped_shadow(p, y0, y1) for p in node.parts])
+        assert shadow.symmetric_difference(expected).area <= 1e-9
