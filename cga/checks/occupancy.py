@@ -407,17 +407,19 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
     # a floor read back from files has its stairs as meshes among the nodes already
     if isinstance(plan, FloorPlan):
         obstacles.extend(stair_obstacles(plan))
-    # occupied_by rasterises in the grid's own frame, whose z origin may differ from
-    # z_min by round-off; where it does not, each obstacle is rasterised once, its cells
-    # drawing the grid and kept for occupied_by
-    shared = -(origin[1] + rows * resolution) == z_min
-    cells = {k: _patches(occupied.shape, o.footprint, x_min, z_min, resolution)
-             for k, o in enumerate(obstacles)}
-    for patches in cells.values():
+    # occupied_by rasterises in the grid's own frame, whose z origin differs from z_min
+    # by round-off: an obstacle's cells drawn here are kept for it when no vertex of
+    # the obstacle changes row between the two frames (Pillow then draws the same cells)
+    frame_z = -(origin[1] + rows * resolution)
+    cells = {}
+    for k, obstacle in enumerate(obstacles):
+        patches = _patches(occupied.shape, obstacle.footprint, x_min, z_min, resolution)
         _apply(occupied, patches)
+        if _same_rows(obstacle.footprint, z_min, frame_z, resolution):
+            cells[k] = patches
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
                          resolution=resolution, floor=plan.index, band=(y0, y1),
-                         obstacles=tuple(obstacles), cells=cells if shared else {})
+                         obstacles=tuple(obstacles), cells=cells)
 
 
 def stair_obstacles(plan: FloorPlan) -> list[Obstacle]:
@@ -453,6 +455,14 @@ def _paint(mask: np.ndarray, geometry: BaseGeometry, x_min: float, z_min: float,
            resolution: float) -> None:
     """Set the cells of ``mask`` that ``geometry`` (plan x, z) covers or crosses."""
     _apply(mask, _patches(mask.shape, geometry, x_min, z_min, resolution))
+
+
+def _same_rows(geometry: BaseGeometry, z_a: float, z_b: float, resolution: float) -> bool:
+    """Whether every vertex of ``geometry`` lies in the same row of cells (as
+    :func:`_patches` computes it) with the grid's top edge at ``z_a`` and at ``z_b``."""
+    z = shapely.get_coordinates(geometry)[:, 1]
+    return bool(np.array_equal(np.floor((z - z_a) / resolution),
+                               np.floor((z - z_b) / resolution)))
 
 
 def _apply(mask: np.ndarray, patches: Sequence[_Patch]) -> None:

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import shapely
 import trimesh
-from hypothesis import given, settings
+from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import box
 
@@ -200,3 +200,22 @@ def test_convex_shadows_of_many_nodes_match_each_part_clipped_alone(seed, nodes,
         assert shapely.to_wkb(shadow) == shapely.to_wkb(alone)
         expected = shapely.union_all([_clipped_shadow(p, y0, y1) for p in node.parts])
         assert shadow.symmetric_difference(expected).area <= 1e-9
+
+
+@settings(max_examples=25, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])  # fixtures: plain data
+@given(corners=st.lists(st.tuples(st.integers(10, 300), st.integers(10, 140),
+                                  st.integers(2, 40), st.integers(2, 40)), min_size=1, max_size=6),
+       margin=st.sampled_from([0.5, 0.55, 0.6, 0.7333]))
+def test_cells_kept_from_the_build_are_those_of_the_grids_own_frame(kit, two_rooms, corners,
+                                                                   margin):
+    """The grid keeps the cells it drew each obstacle with for occupied_by only where
+    they are the cells of the grid's own frame: items with edges on (or a round-off
+    away from) cell boundaries get exactly what a fresh rasterisation gives."""
+    nodes = [kit.box_item(f"box{k}", (w * 0.025, 0.5, d * 0.025),
+                         (x * 0.025 + w * 0.0125, z * 0.025 + d * 0.0125))
+             for k, (x, z, w, d) in enumerate(corners)]
+    grid = occupancy_grid(two_rooms, nodes, margin=margin)
+    for obstacle in grid.obstacles:
+        fresh = grid.rasterise(obstacle.footprint)
+        assert np.array_equal(grid.occupied_by([obstacle.path]), fresh)
