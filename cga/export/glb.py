@@ -107,17 +107,17 @@ def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Mat
     return digest.digest(), node.materials
 
 
-def _local_meshes(node: SceneNode, vertices: np.ndarray, looks: _Looks) -> list[Any]:
-    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`), with normals
-    and without metadata (which trimesh would write as mesh extras): one mesh per
-    material of the node (:attr:`SceneNode.materials`), each with its PBR material, which
-    become the primitives of one glTF mesh. A node without materials (not dressed) keeps
-    its own colours, or gets its kind's colour."""
+def _local_meshes(node: SceneNode, vertices: np.ndarray, normals: np.ndarray,
+                  looks: _Looks) -> list[Any]:
+    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`) with their
+    ``normals`` (:func:`_vertex_normals`), without metadata (which trimesh would write as
+    mesh extras): one mesh per material of the node (:attr:`SceneNode.materials`), each
+    with its PBR material, which become the primitives of one glTF mesh. A node without
+    materials (not dressed) keeps its own colours, or gets its kind's colour."""
     import trimesh
 
     source = node.mesh
     faces = np.asarray(source.faces, dtype=np.int64)
-    normals = _vertex_normals(vertices, faces)
     if not node.materials or node.face_materials is None:
         visual = source.visual
         if visual is None or visual.kind is None:
@@ -160,11 +160,16 @@ class _Looks:
         return trimesh.visual.TextureVisuals(material=pbr)
 
 
-def _vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Unit normals of a mesh's vertices: trimesh's mean of the normals of the faces
-    around each vertex weighted by their corner angles (Thürrner & Wüthrich 1998,
-    :func:`trimesh.geometry.weighted_vertex_normals`), computed from the arrays
-    rather than through a trimesh object, whose caching costs more than the sums.
+def _vertex_normals(meshes: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[np.ndarray]:
+    """Unit normals of the vertices of each mesh ``(vertices, faces)``: trimesh's mean of
+    the normals of the faces around each vertex weighted by their corner angles
+    (Thürrner & Wüthrich 1998, :func:`trimesh.geometry.weighted_vertex_normals`).
+
+    All meshes go through trimesh's functions at once, as one mesh of separate pieces:
+    a vertex's sum runs over the faces of its own mesh in the same order as for that mesh
+    alone (and every other step works face by face or vertex by vertex), so each mesh
+    gets the very normals it would get alone, for one sparse product instead of one per
+    mesh and no trimesh object, whose caching costs more than the sums.
 
     A vertex whose mean has (nearly) zero length takes the normal of one of its faces
     that has one (else +y). A vertex where faces facing opposite ways meet (a stair's
@@ -173,27 +178,38 @@ def _vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     validator's ACCESSOR_VECTOR3_NON_UNIT)."""
     from trimesh import geometry, triangles
 
-    if len(faces) == 0:
-        return np.zeros((len(vertices), 3))
-    corners = vertices[faces]
-    unit, valid = triangles.normals(triangles=corners, crosses=triangles.cross(corners))
-    face_normals = unit
-    if not valid.all():  # degenerate triangles: zero normals, as trimesh pads them
-        face_normals = np.zeros((len(faces), 3))
-        face_normals[valid] = unit
-    normals = geometry.weighted_vertex_normals(vertex_count=len(vertices), faces=faces,
-                                               face_normals=face_normals,
-                                               face_angles=triangles.angles(corners))
-    flat = np.linalg.norm(normals, axis=1) < 0.5
-    if flat.any():
-        around = geometry.vertex_face_indices(
-            len(vertices), faces, geometry.index_sparse(len(vertices), faces))[flat]
-        candidates = np.vstack([face_normals, [[0.0, 0.0, 0.0]]])[around]  # -1: zero row
-        usable = np.linalg.norm(candidates, axis=2) > 0.5
-        chosen = candidates[np.arange(len(around)), np.argmax(usable, axis=1)]
-        chosen[~usable.any(axis=1)] = (0.0, 1.0, 0.0)
-        normals[flat] = chosen
-    return normals
+    counts = [len(vertices) for vertices, _ in meshes]
+    starts = np.cumsum([0, *counts])
+    face_starts = np.cumsum([0, *(len(np.reshape(f, (-1, 3))) for _, f in meshes)])
+    vertices = np.concatenate([np.zeros((0, 3)), *(v for v, _ in meshes)])
+    faces = np.concatenate([np.zeros((0, 3), dtype=np.int64),
+                            *(np.reshape(f, (-1, 3)) + start
+                              for (_, f), start in zip(meshes, starts))])
+    normals = np.zeros((len(vertices), 3))
+    if len(faces):
+        corners = vertices[faces]
+        unit, valid = triangles.normals(triangles=corners, crosses=triangles.cross(corners))
+        face_normals = unit
+        if not valid.all():  # degenerate triangles: zero normals, as trimesh pads them
+            face_normals = np.zeros((len(faces), 3))
+            face_normals[valid] = unit
+        normals = geometry.weighted_vertex_normals(
+            vertex_count=len(vertices), faces=faces, face_normals=face_normals,
+            face_angles=triangles.angles(corners))
+    out = [normals[a:b] for a, b in zip(starts[:-1], starts[1:])]
+    for k, own in enumerate(out):
+        flat = np.linalg.norm(own, axis=1) < 0.5
+        if flat.any() and face_starts[k + 1] > face_starts[k]:
+            own_faces = faces[face_starts[k]:face_starts[k + 1]] - starts[k]
+            around = geometry.vertex_face_indices(
+                len(own), own_faces, geometry.index_sparse(len(own), own_faces))[flat]
+            candidates = np.vstack([face_normals[face_starts[k]:face_starts[k + 1]],
+                                    [[0.0, 0.0, 0.0]]])[around]  # -1 picks the zero row
+            usable = np.linalg.norm(candidates, axis=2) > 0.5
+            chosen = candidates[np.arange(len(around)), np.argmax(usable, axis=1)]
+            chosen[~usable.any(axis=1)] = (0.0, 1.0, 0.0)
+            own[flat] = chosen
+    return out
 
 
 def _mesh_key(meshes: Sequence[Any]) -> str:
@@ -259,7 +275,15 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     looks = _Looks()
     instances = instance_ids(nodes)
     names = class_names()
-    for node in nodes:
+    pivots = [node_pivot(node) for node in nodes]
+    local = [_local_vertices(node, pivot) for node, pivot in zip(nodes, pivots)]
+    sources = [_source_key(node, vertices) for node, vertices in zip(nodes, local)]
+    first: dict[tuple[bytes, tuple[Material, ...]], int] = {}
+    meshed = [i for i, source in enumerate(sources)
+              if source is None or first.setdefault(source, i) == i]
+    normals = dict(zip(meshed, _vertex_normals(
+        [(local[i], np.asarray(nodes[i].mesh.faces, dtype=np.int64)) for i in meshed])))
+    for i, node in enumerate(nodes):
         if node.path in seen or node.path in (root, "world"):
             raise ExportError(f"two scene nodes are both named {node.path!r}")
         seen.add(node.path)
@@ -271,12 +295,10 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
         except TypeError as error:
             raise ExportError(f"node {node.path!r}: {error}") from None
         parent = _parent(tm_scene, node.path, root, groups, made)
-        pivot = node_pivot(node)
-        vertices = _local_vertices(node, pivot)
-        source = _source_key(node, vertices)
+        source = sources[i]
         name = made_from.get(source) if source is not None else None
         if name is None:
-            pieces = _local_meshes(node, vertices, looks)
+            pieces = _local_meshes(node, local[i], normals[i], looks)
             key = _mesh_key(pieces)
             if key not in meshes:
                 base = node.item.model if node.item is not None else node.path
@@ -287,7 +309,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
             name = meshes[key]
             if source is not None:
                 made_from[source] = name
-        tm_scene.graph.update(frame_from=parent, frame_to=node.path, matrix=pivot,
+        tm_scene.graph.update(frame_from=parent, frame_to=node.path, matrix=pivots[i],
                               geometry=name, metadata=extras)
         made.add(node.path)
     lights = _add_lights(tm_scene, scene, root, groups, made)
