@@ -8,6 +8,7 @@ build's door angle, so every output shows the door as the build leaves it.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import cache
 
 import numpy as np
 import trimesh
@@ -17,7 +18,7 @@ from cga.model import FloorPlan, FurnitureItem
 from cga.operations.furniture.library import FurnitureModel
 from cga.scene import ItemInfo, MeshArrays, SceneNode
 
-__all__ = ["leaf_node"]
+__all__ = ["box_arrays", "leaf_node"]
 
 
 def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> SceneNode:
@@ -40,7 +41,6 @@ def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> Sc
     frame = leaf.frame()
     mesh = leaf_mesh(model.mesh, frame @ leaf_model_matrix(leaf, model.mesh.bounds, slab))
     centre, extents = leaf.box()
-    box = trimesh.creation.box(extents=extents, transform=frame @ _translation(centre))
     room = plan.room(item.room)
     return SceneNode(
         path=f"floor{plan.index}/{room.label}/furniture/{item.name}",
@@ -48,12 +48,29 @@ def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> Sc
         mesh=mesh,
         extras=leaf.labels(),
         static=True,
-        parts=(MeshArrays(np.asarray(box.vertices), np.asarray(box.faces)),),
+        parts=(box_arrays(extents, frame @ _translation(centre)),),
         item=ItemInfo(model=model.name, model_path=model.path, room=item.room, name=item.name,
                       parent=item.parent, rotation=item.rotation, density=model.density,
                       mass=float(np.prod(extents)) * model.density, convex_parts=True),
         door=leaf,
     )
+
+
+def box_arrays(extents: np.ndarray, matrix: np.ndarray) -> MeshArrays:
+    """The box ``trimesh.creation.box(extents=extents, transform=matrix)`` makes, as
+    arrays (its corners moved by ``matrix`` the way trimesh moves them, its triangles),
+    without making a mesh. ``matrix`` turns and moves (a hinge frame), so the triangles
+    keep their winding."""
+    unit = _unit_box()
+    return MeshArrays(trimesh.transform_points(unit.vertices * np.asarray(extents, dtype=float),
+                                               matrix), unit.faces)
+
+
+@cache
+def _unit_box() -> MeshArrays:
+    """trimesh's box of unit extents about the origin."""
+    box = trimesh.creation.box()
+    return MeshArrays(np.asarray(box.vertices).copy(), np.asarray(box.faces).copy())
 
 
 def _translation(offset: Sequence[float] | np.ndarray) -> np.ndarray:

@@ -7,6 +7,8 @@ item (docs/architecture.md, "Meshing").
 
 from __future__ import annotations
 
+from itertools import accumulate
+
 import numpy as np
 import trimesh
 
@@ -58,9 +60,9 @@ def _posed(model: FurnitureModel, matrix: np.ndarray
     """
     source = model.mesh
     vertices = trimesh.transform_points(source.vertices, matrix)
-    ends = np.cumsum([len(v) for v in model.geometry.vertices])
-    parts = tuple(MeshArrays(v, f) for v, f in
-                  zip(np.split(vertices, ends[:-1]), model.geometry.faces))
+    ends = list(accumulate(len(v) for v in model.geometry.vertices))
+    parts = tuple(MeshArrays(vertices[start:end], faces) for start, end, faces in
+                  zip([0, *ends], ends, model.geometry.faces))
     mesh = trimesh.Trimesh(vertices=vertices, faces=source.faces.copy(),
                            visual=source.visual.copy() if source.visual is not None else None,
                            process=False)

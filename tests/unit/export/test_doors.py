@@ -102,3 +102,25 @@ def test_door_states_fixed_and_drawn():
             assert door.angle == (0.0 if door.state == "closed" else pytest.approx(math.pi / 2))
     with pytest.raises(ValueError, match="door_state must be one of"):
         with_door_states(doors, "locked", rng)
+
+
+@pytest.mark.parametrize("angle", [0.0, 0.3, math.pi / 2, 1.9])
+def test_leaf_collision_box_is_trimesh_s_box_and_holds_the_leaf(small_scene, angle):
+    """The box part of a door node, made from arrays, is bit for bit the box trimesh
+    makes, and its corners are the leaf's."""
+    import trimesh
+
+    from cga.meshing.doors import box_arrays
+
+    scene, _ = small_scene
+    plan = scene.floors[0]
+    for door in plan.doors:
+        leaf = door_leaf(plan, replace(door, angle=angle), T)
+        centre, extents = leaf.box()
+        matrix = leaf.frame() @ trimesh.transformations.translation_matrix(centre)
+        box = box_arrays(extents, matrix)
+        expected = trimesh.creation.box(extents=extents, transform=matrix)
+        assert np.array_equal(box.vertices, expected.vertices)
+        assert np.array_equal(box.faces, expected.faces)
+        assert trimesh.Trimesh(vertices=box.vertices, faces=box.faces).is_volume
+        assert np.allclose(np.sort(box.vertices, axis=0), np.sort(leaf.corners(), axis=0))
