@@ -51,6 +51,7 @@ from shapely.geometry.base import BaseGeometry
 from cga.model import OUTSIDE, Door, FloorPlan, Room, Stair
 from cga.scene import Scene, SceneNode
 
+from ._distance import distance_to_false
 from .occupancy import OccupancyGrid, occupancy_grid
 
 __all__ = [
@@ -392,7 +393,7 @@ class _FloorCheck:
         """Distance (m) from each cell centre to the nearest blocked cell's edge."""
         if not blocked.any():
             return np.full(blocked.shape, np.inf)
-        return ndimage.distance_transform_edt(~blocked) * self.res - self.res / 2
+        return distance_to_false(~blocked) * self.res - self.res / 2
 
     def _room_mask(self, room: Room) -> np.ndarray:
         """The room's free floor shrunk by one cell, so doorway cells belong to no room."""

@@ -17,21 +17,20 @@ Every formula is in docs/difficulty.md.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, fields
 from typing import TYPE_CHECKING, Any
 
-import networkx as nx
 import numpy as np
 import shapely
-from scipy import ndimage
-from scipy.sparse.csgraph import dijkstra
 
+from cga.checks._distance import distance_to_false, squared_distance_to_false, squared_reach
 from cga.model import OUTSIDE, FloorPlan
 
-from .exploration import _grid_graph, exploration_path
-
 if TYPE_CHECKING:  # pragma: no cover
+    import networkx as nx
+
     from cga.checks.navigability import DriveSpace, FloorReach, NavigabilityReport
     from cga.scene import Scene
 
@@ -133,6 +132,8 @@ class DifficultyReport:
 def door_graph(plan: FloorPlan) -> nx.MultiGraph:
     """Rooms joined by one edge per door between two rooms (doors to the outside left
     out): two doors between the same rooms are a cycle a robot can drive round."""
+    import networkx as nx
+
     graph = nx.MultiGraph()
     graph.add_nodes_from(room.id for room in plan.rooms)
     graph.add_edges_from(door.rooms for door in plan.doors if OUTSIDE not in door.rooms)
@@ -141,6 +142,8 @@ def door_graph(plan: FloorPlan) -> nx.MultiGraph:
 
 def cycle_rank(plan: FloorPlan) -> int:
     """``E − V + C`` of :func:`door_graph`: independent cycles (loops) of the floor."""
+    import networkx as nx
+
     graph = door_graph(plan)
     return (graph.number_of_edges() - graph.number_of_nodes()
             + nx.number_connected_components(graph))
@@ -192,6 +195,10 @@ def items_per_m2(plan: FloorPlan) -> float:
 def _geodesic(reached: np.ndarray, start: tuple[int, int], resolution: float) -> np.ndarray:
     """Shortest 8-connected path length (m) from ``start`` to every reached cell (inf
     elsewhere)."""
+    from scipy.sparse.csgraph import dijkstra
+
+    from .exploration import _grid_graph
+
     graph, index = _grid_graph(reached, resolution)
     distances = dijkstra(graph, directed=False, indices=int(index[start]))
     out = np.full(reached.shape, np.inf)
@@ -213,17 +220,34 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
     A disc of radius ``r`` centred on a cell whose clearance is at least ``r`` is free, so
     a cell lies in a free disc of radius ``r`` exactly when it is within ``r`` of such a
     centre: one distance transform per radius (Hildebrand and Rüegsegger 1997 define the
-    same thickness). Cells in no free disc (the obstacles) get 0.
+    same thickness), each on the bounding box of the centres grown by ``r`` (no cell
+    farther out is within ``r`` of a centre). Cells in no free disc (the obstacles)
+    get 0.
     """
     width = np.zeros(clearance.shape)
-    radius = WIDTH_STEP / 2
-    while radius <= MAX_WIDTH / 2:
-        centres = clearance >= radius
-        if not centres.any():
+    row_best, col_best = clearance.max(axis=1), clearance.max(axis=0)
+    for radius in _radii():
+        rows, cols = np.flatnonzero(row_best >= radius), np.flatnonzero(col_best >= radius)
+        if not rows.size:
             break
-        width[ndimage.distance_transform_edt(~centres) * resolution <= radius] = 2 * radius
-        radius += WIDTH_STEP / 2
+        grow = math.ceil(radius / resolution) + 1
+        box = (slice(max(0, int(rows[0]) - grow), int(rows[-1]) + grow + 1),
+               slice(max(0, int(cols[0]) - grow), int(cols[-1]) + grow + 1))
+        near = (squared_distance_to_false(clearance[box] < radius)
+                <= squared_reach(radius, resolution))
+        width[box][near] = 2 * radius
     return width
+
+
+def _radii() -> list[float]:
+    """The disc radii :func:`local_width` tries: multiples of half :data:`WIDTH_STEP` up
+    to half :data:`MAX_WIDTH`, accumulated step by step (so each is the same float
+    however the loop runs)."""
+    out, radius = [], WIDTH_STEP / 2
+    while radius <= MAX_WIDTH / 2:
+        out.append(radius)
+        radius += WIDTH_STEP / 2
+    return out
 
 
 def grid_metrics(plan: FloorPlan, space: "DriveSpace", reach: "FloorReach",
@@ -241,7 +265,7 @@ def grid_metrics(plan: FloorPlan, space: "DriveSpace", reach: "FloorReach",
         "free_area_share": float(free.sum() / room_cells) if room_cells else None}
     reached = space.reached
     # the floor the robot's body covers: cells within the radius of a reached centre
-    body = ndimage.distance_transform_edt(~reached) * res <= radius if reached.any() else reached
+    body = distance_to_false(~reached) * res <= radius if reached.any() else reached
     out["reachable_share"] = float((body & free).sum() / free.sum()) if free.any() else None
     clear = np.minimum(space.clearance, 100.0)
     floor = body & free
@@ -276,6 +300,8 @@ def grid_metrics(plan: FloorPlan, space: "DriveSpace", reach: "FloorReach",
     for mask in space.room_masks.values():
         if (mask & reached).any():
             seen |= mask & free
+    from .exploration import exploration_path
+
     out["exploration_path_m"] = exploration_path(seen, grid.occupied & ~_door_leaves(space),
                                                  reached, space.start, res)
     return out

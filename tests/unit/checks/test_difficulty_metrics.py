@@ -6,12 +6,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from cga.checks import check_navigability
 from cga.difficulty import measure_floor
 from cga.difficulty.exploration import exploration_path
-from cga.difficulty.metrics import (corridor_length, cycle_rank, dead_ends, doors_per_room,
-                                    items_per_m2)
+from cga.difficulty.metrics import (MAX_WIDTH, WIDTH_STEP, corridor_length, cycle_rank,
+                                    dead_ends, doors_per_room, items_per_m2, local_width)
 from cga.model import FurnitureItem
 
 T = 0.2  # FloorSettings' default wall thickness
@@ -160,3 +162,39 @@ def test_exploration_of_a_long_corridor():
     free, blocked = _corridor(20.0)
     start = (free.shape[0] // 2, 1)
     assert exploration_path(free, blocked, free, start, 0.05) == pytest.approx(15.0, abs=0.3)
+
+
+def _local_width_by_definition(clearance, resolution):
+    """The local width as docs/difficulty.md defines it, computed the straightforward
+    way: for every radius, scipy's distance transform of the whole grid to the cells
+    whose clearance admits a disc of that radius."""
+    from scipy import ndimage
+
+    width = np.zeros(clearance.shape)
+    radius = WIDTH_STEP / 2
+    while radius <= MAX_WIDTH / 2:
+        centres = clearance >= radius
+        if not centres.any():
+            break
+        width[ndimage.distance_transform_edt(~centres) * resolution <= radius] = 2 * radius
+        radius += WIDTH_STEP / 2
+    return width
+
+
+@settings(max_examples=30, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(3, 90), cols=st.integers(3, 90),
+       boxes=st.integers(0, 6), resolution=st.sampled_from([0.05, 0.1, 0.04]))
+def test_local_width_is_the_per_radius_definition(seed, rows, cols, boxes, resolution):
+    """local_width (distance transforms cropped to each radius's centres) gives the very
+    numbers of the definition on rooms with random furniture."""
+    from scipy import ndimage
+
+    rng = np.random.default_rng(seed)
+    blocked = np.zeros((rows, cols), dtype=bool)
+    blocked[[0, -1], :] = blocked[:, [0, -1]] = True
+    for _ in range(boxes):
+        r, c = rng.integers(0, rows), rng.integers(0, cols)
+        blocked[r:r + rng.integers(1, 12), c:c + rng.integers(1, 12)] = True
+    clearance = ndimage.distance_transform_edt(~blocked) * resolution - resolution / 2
+    assert np.array_equal(local_width(clearance, resolution),
+                          _local_width_by_definition(clearance, resolution))

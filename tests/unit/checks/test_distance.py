@@ -1,0 +1,52 @@
+"""Distance transforms of boolean grids (cga.checks._distance): the very numbers of
+scipy.ndimage.distance_transform_edt, on random grids and on the scipy fallback."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy import ndimage
+
+from cga.checks import _distance
+from cga.checks._distance import distance_to_false, squared_distance_to_false, squared_reach
+
+
+def _grid(seed: int, rows: int, cols: int, density: float) -> np.ndarray:
+    inside = np.random.default_rng(seed).random((rows, cols)) >= density
+    inside[rows // 2, cols // 3] = False  # at least one false cell
+    return inside
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 120), cols=st.integers(1, 120),
+       density=st.sampled_from([0.0, 0.001, 0.02, 0.3, 0.9]))
+def test_distances_are_scipys_bit_for_bit(seed, rows, cols, density):
+    inside = _grid(seed, rows, cols, density)
+    expected = ndimage.distance_transform_edt(inside)
+    assert np.array_equal(distance_to_false(inside), expected)
+    view = inside[::-1, ::2]  # a view, any layout
+    if not view.all():
+        assert np.array_equal(distance_to_false(view), ndimage.distance_transform_edt(view))
+    squared = squared_distance_to_false(inside)
+    assert np.array_equal(squared, np.rint(expected ** 2))
+
+
+def test_large_grids_fall_back_on_scipy(monkeypatch):
+    inside = _grid(7, 90, 70, 0.01)
+    monkeypatch.setattr(_distance, "_EXACT_DIAGONAL_SQUARED", 100)
+    assert np.array_equal(distance_to_false(inside), ndimage.distance_transform_edt(inside))
+
+
+@pytest.mark.parametrize("resolution", [0.05, 0.1, 0.03, 0.07])
+def test_squared_reach_picks_the_cells_the_float_test_picks(resolution):
+    radius = 0.0
+    for _ in range(80):
+        radius += 0.05  # accumulated, as the local width's radii are
+        reach = squared_reach(radius, resolution)
+        d2 = np.arange(4 * reach + 8)
+        within = np.sqrt(d2.astype(float)) * resolution <= radius
+        assert np.array_equal(within, d2 <= reach)
+    assert squared_reach(-1.0, 0.05) == -1
+    assert squared_reach(0.0, 0.05) == 0
