@@ -34,7 +34,6 @@ the points it stands on (its vertices within 5 mm of its lowest point).
 
 from __future__ import annotations
 
-import hashlib
 import math
 import os
 import re
@@ -43,17 +42,15 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
-import shapely
-import trimesh
-from trimesh.triangles import mass_properties
 
-from cga.collision import BULLET_MARGIN, CONTACT_SHRINK, collision_parts, shrink_part
+from cga.collision import BULLET_MARGIN, CONTACT_SHRINK
 from cga.scene import Scene, SceneNode
 
-from ._bullet import direct_client, obj_text
+from ._bullet import direct_client
+from ._item_solids import ItemShape, item_shape, item_solid
 from ._solids import convex_pieces
 
 __all__ = [
@@ -86,9 +83,6 @@ _REST_SECONDS = 0.1
 
 _CHECK_EVERY = 0.025
 """Simulated seconds between two rest checks."""
-
-_FOOT = 0.005
-"""m: an item stands on its vertices within this height of its lowest point."""
 
 _STABILITY_TOLERANCE = 0.01
 """m: an item whose centre of mass lies further than this outside the hull of the points
@@ -363,6 +357,7 @@ class _World:
     timestep: float
     paths: dict[int, str] = field(default_factory=dict)
     kinds: dict[int, str] = field(default_factory=dict)
+    shapes: dict[str, int] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.pb.setGravity(0.0, -GRAVITY, 0.0, physicsClientId=self.client)
@@ -392,28 +387,32 @@ class _World:
             self.paths[uid], self.kinds[uid] = node.path, "static"
 
     def add_item(self, node: SceneNode, cache_dir: Path | None) -> _Body:
-        """A dynamic compound body for a furniture item, its origin at the parts' centroid."""
-        parts = [_Part(np.asarray(p.vertices, dtype=float), np.asarray(p.faces, dtype=np.int64))
-                 for p in collision_parts(node, cache_dir)]
-        volumes, centres = _mass_properties(parts)
-        weights = volumes if volumes.sum() > 0 else np.ones(len(parts))
-        centroid = (centres * weights[:, None]).sum(axis=0) / weights.sum()
-        mass = _mass(node, float(volumes.sum()))
-        text = obj_text([_Part(shrink_part(p.vertices), p.faces) for p in parts],
-                        offset=centroid)
-        path = self.folder / f"{hashlib.sha1(text.encode()).hexdigest()}.obj"
-        if not path.exists():
-            path.write_text(text, encoding="utf-8")
-        shape = self.pb.createCollisionShape(self.pb.GEOM_MESH, fileName=os.fspath(path),
-                                             physicsClientId=self.client)
-        if shape < 0:
-            raise RuntimeError(f"pybullet rejected the convex parts of {node.path}")
-        uid = self.pb.createMultiBody(mass, shape, basePosition=centroid.tolist(),
+        """A dynamic compound body for a furniture item, its origin at the parts' centre of
+        mass; items of one model, size and turn share one collision shape."""
+        solid, linear, offset = item_solid(node, cache_dir)
+        centroid = linear @ solid.centroid + offset
+        shape = item_shape(solid, linear)
+        mass = _mass(node, solid.volume * abs(float(np.linalg.det(linear))))
+        uid = self.pb.createMultiBody(mass, self._shape(shape, node.path),
+                                      basePosition=centroid.tolist(),
                                       physicsClientId=self.client)
         self.pb.changeDynamics(uid, -1, restitution=0.0, physicsClientId=self.client)
         self.paths[uid], self.kinds[uid] = node.path, "item"
-        return _Body(uid=uid, mass=mass, start=centroid, bottom=float(node.mesh.bounds[0][1]),
-                     path=node.path, support_gap=_support_gap(parts, centroid))
+        return _Body(uid=uid, mass=mass, start=centroid, bottom=float(centroid[1] + shape.lowest),
+                     path=node.path, support_gap=shape.support_gap)
+
+    def _shape(self, shape: ItemShape, path: str) -> int:
+        """The pybullet collision shape of ``shape``, made on its first use in this world."""
+        uid = self.shapes.get(shape.name)
+        if uid is None:
+            file = self.folder / f"{shape.name}.obj"
+            file.write_text(shape.text, encoding="utf-8")
+            uid = self.pb.createCollisionShape(self.pb.GEOM_MESH, fileName=os.fspath(file),
+                                               physicsClientId=self.client)
+            if uid < 0:
+                raise RuntimeError(f"pybullet rejected the convex parts of {path}")
+            self.shapes[shape.name] = uid
+        return uid
 
     def support_heights(self, points: Sequence[np.ndarray]) -> list[float | None]:
         """For each point, the height of the first static surface straight below it."""
@@ -501,43 +500,13 @@ class _World:
 
 
 def _centroid(node: SceneNode) -> np.ndarray:
+    """The centre of an item's bounding box (from its parts, the same vertices as its
+    mesh, when it has them)."""
+    if node.parts:
+        vertices = np.concatenate([np.asarray(p.vertices, dtype=float) for p in node.parts])
+        return (vertices.min(axis=0) + vertices.max(axis=0)) / 2
     lo, hi = node.mesh.bounds
     return (lo + hi) / 2
-
-
-class _Part(NamedTuple):
-    """A convex part as arrays (what :func:`obj_text` and the mass properties read)."""
-
-    vertices: np.ndarray
-    faces: np.ndarray
-
-
-def _mass_properties(parts: Sequence[_Part]) -> tuple[np.ndarray, np.ndarray]:
-    """Each part's volume (m³, 0 for a part that encloses none) and centre of mass (its
-    area centroid when it has no volume), computed from the arrays by trimesh's own
-    routine without building a mesh object per part."""
-    volumes, centres = [], []
-    for part in parts:
-        triangles = part.vertices[part.faces]
-        props = mass_properties(triangles, skip_inertia=True)
-        volume = max(float(props.volume), 0.0)
-        if volume > 0:
-            centre = np.asarray(props.center_mass, dtype=float)
-        else:
-            mesh = trimesh.Trimesh(vertices=part.vertices, faces=part.faces, process=False)
-            centre = np.asarray(mesh.centroid, dtype=float)
-        volumes.append(volume)
-        centres.append(centre)
-    return np.array(volumes), np.array(centres)
-
-
-def _support_gap(parts: Sequence[_Part], centroid: np.ndarray) -> float:
-    """Plan distance (m) from the centre of mass to the hull of the points the item
-    stands on: its vertices within :data:`_FOOT` of its lowest point (0 when over it)."""
-    vertices = np.concatenate([np.asarray(p.vertices, dtype=float) for p in parts])
-    feet = vertices[vertices[:, 1] <= vertices[:, 1].min() + _FOOT][:, [0, 2]]
-    hull = shapely.MultiPoint(feet).convex_hull
-    return float(hull.distance(shapely.Point(centroid[0], centroid[2])))
 
 
 def _mass(node: SceneNode, volume: float) -> float:
