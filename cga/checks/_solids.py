@@ -9,11 +9,16 @@ open surface, a user model with holes) gives ``None`` and the caller falls back.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import NamedTuple
+
 import manifold3d
 import numpy as np
 import trimesh
 
-__all__ = ["as_manifold", "as_trimesh", "convex_pieces"]
+from ._bullet import MeshArrays
+
+__all__ = ["Piece", "as_manifold", "as_trimesh", "convex_pieces"]
 
 _CONVEX_TOLERANCE = 1e-6
 """A piece is convex when its volume is within this fraction of its hull's."""
@@ -48,19 +53,28 @@ def as_trimesh(solid: manifold3d.Manifold) -> trimesh.Trimesh:
                            faces=np.asarray(out.tri_verts, dtype=np.int64), process=False)
 
 
-def convex_pieces(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh] | None:
+class Piece(NamedTuple):
+    """A convex piece as arrays: ``vertices`` float[n, 3] and ``faces`` int[m, 3]."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+
+def convex_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
     """Cut a solid into convex pieces with axis-aligned planes through its vertices.
 
     A building's structure is rectilinear: a wall is a box with rectangular openings, a
     slab a prism over a rectilinear footprint. Cutting such a solid with the planes
     ``x``, ``z`` and ``y`` = constant through its vertices leaves boxes. Returns the
-    pieces (one piece, the mesh itself, when it is already convex), or ``None`` when the
-    mesh is not a watertight solid or some piece is not convex (a slanted wall with an
-    opening), so the caller can use the mesh as it is.
+    pieces as arrays (one piece, the mesh itself, when it is already convex), or
+    ``None`` when the mesh is not a watertight solid or some piece is not convex (a
+    slanted wall with an opening), so the caller can use the mesh as it is.
 
     Notes
     -----
-    At most a few dozen cuts per wall; each is a manifold3d plane split.
+    At most a few dozen cuts per wall; each is a manifold3d plane split. A piece that
+    fills its bounding box is a box, so convex, without computing its hull; each piece's
+    convexity is settled once, not once per plane it straddles.
     """
     solid = as_manifold(mesh)
     if solid is None:
@@ -68,26 +82,56 @@ def convex_pieces(mesh: trimesh.Trimesh) -> list[trimesh.Trimesh] | None:
     if _is_convex(solid):
         return [mesh]
     vertices = np.asarray(solid.to_mesh().vert_properties[:, :3], dtype=float)
-    pieces = [solid]
+    pieces = [_Cut(solid)]
     for axis in (0, 2, 1):
         normal = tuple(1.0 if k == axis else 0.0 for k in range(3))
         for value in np.unique(vertices[:, axis]):
-            cut: list[manifold3d.Manifold] = []
+            cut: list[_Cut] = []
             for piece in pieces:
-                box = piece.bounding_box()
-                if box[axis] + 1e-9 < value < box[axis + 3] - 1e-9 and not _is_convex(piece):
-                    cut.extend(p for p in piece.split_by_plane(normal, float(value))
+                box = piece.box
+                if box[axis] + 1e-9 < value < box[axis + 3] - 1e-9 and not piece.convex:
+                    cut.extend(_Cut(p) for p in piece.solid.split_by_plane(normal, float(value))
                                if p.volume() > _MIN_VOLUME)
                 else:
                     cut.append(piece)
             pieces = cut
             if len(pieces) > _MAX_PIECES:
                 return None
-    if not all(_is_convex(piece) for piece in pieces):
+    if not all(piece.convex for piece in pieces):
         return None
-    return [as_trimesh(piece) for piece in pieces]
+    return [_arrays(piece.solid) for piece in pieces]
 
 
-def _is_convex(solid: manifold3d.Manifold) -> bool:
+class _Cut:
+    """A piece being cut: its solid, bounding box and (once asked) convexity."""
+
+    __slots__ = ("solid", "box", "_convex")
+
+    def __init__(self, solid: manifold3d.Manifold):
+        self.solid = solid
+        self.box = solid.bounding_box()
+        self._convex: bool | None = None
+
+    @property
+    def convex(self) -> bool:
+        if self._convex is None:
+            self._convex = _is_convex(self.solid, self.box)
+        return self._convex
+
+
+def _arrays(solid: manifold3d.Manifold) -> Piece:
+    out = solid.to_mesh()
+    return Piece(np.asarray(out.vert_properties[:, :3], dtype=float),
+                 np.asarray(out.tri_verts, dtype=np.int64))
+
+
+def _is_convex(solid: manifold3d.Manifold,
+               box: tuple[float, float, float, float, float, float] | None = None) -> bool:
+    """Whether ``solid``'s volume is within :data:`_CONVEX_TOLERANCE` of its hull's. A
+    solid that fills as much of its bounding box is (the hull lies in the box)."""
+    volume = solid.volume()
+    lo_x, lo_y, lo_z, hi_x, hi_y, hi_z = box if box is not None else solid.bounding_box()
+    if volume > 0 and volume >= (hi_x - lo_x) * (hi_y - lo_y) * (hi_z - lo_z) * (1.0 - _CONVEX_TOLERANCE):
+        return True
     hull = solid.hull().volume()
-    return hull > 0 and solid.volume() >= hull * (1.0 - _CONVEX_TOLERANCE)
+    return hull > 0 and volume >= hull * (1.0 - _CONVEX_TOLERANCE)

@@ -383,7 +383,8 @@ class _World:
         for shape in shapes:
             if shape < 0:
                 raise RuntimeError(f"pybullet rejected the mesh of {node.path}")
-            uid = self.pb.createMultiBody(0.0, shape, physicsClientId=self.client)
+            uid = self.pb.createMultiBody(0.0, shape, useMaximalCoordinates=True,
+                                          physicsClientId=self.client)
             self.paths[uid], self.kinds[uid] = node.path, "static"
 
     def add_item(self, node: SceneNode, cache_dir: Path | None) -> _Body:
@@ -395,7 +396,7 @@ class _World:
         mass = _mass(node, solid.volume * abs(float(np.linalg.det(linear))))
         uid = self.pb.createMultiBody(mass, self._shape(shape, node.path),
                                       basePosition=centroid.tolist(),
-                                      physicsClientId=self.client)
+                                      useMaximalCoordinates=True, physicsClientId=self.client)
         self.pb.changeDynamics(uid, -1, restitution=0.0, physicsClientId=self.client)
         self.paths[uid], self.kinds[uid] = node.path, "item"
         return _Body(uid=uid, mass=mass, start=centroid, bottom=float(centroid[1] + shape.lowest),
