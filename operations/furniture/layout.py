@@ -36,10 +36,11 @@ from functools import lru_cache
 
 import numpy as np
 import shapely
-from shapely import STRtree, affinity
+from shapely import affinity
 from shapely.geometry import Polygon
 
 from .clearance import Box, EnvelopePart, Keepout, OpeningStrip, envelope
+from .obstacles import BODY, CLEARANCE, DOOR, KINDS, WALL, ObstacleBlock, ObstacleIndex, complement
 from .passage import Passage
 from .rules import FurnitureRule
 
@@ -127,16 +128,6 @@ class Conflict:
         }[self.kind]
 
 
-@dataclass(frozen=True)
-class _Entry:
-    """An obstacle; ``rectangle`` holds its bounds when it is an axis-aligned rectangle."""
-
-    kind: str
-    owner: str | None
-    geometry: Polygon
-    rectangle: Box | None
-
-
 def _rectangle(geometry: Polygon) -> Box | None:
     """The bounds when ``geometry`` is an axis-aligned rectangle, else None."""
     minx, miny, maxx, maxy = geometry.bounds
@@ -220,18 +211,39 @@ class Layout:
     def __init__(self, interior: Polygon, keepouts: Sequence[Keepout] = (),
                  windows: Sequence[OpeningStrip] = (), passage: Passage | None = None):
         self.interior = interior
-        self._static = [_Entry("wall", "a wall", piece, _rectangle(piece))
-                        for piece in _outside_pieces(interior)]
-        self._static += [_Entry("door", k.label, k.polygon, _rectangle(k.polygon))
-                         for k in keepouts]
+        self._ids: dict[str, int] = {}
+        self._names: list[str] = []
+        walls = _outside_pieces(interior)
+        self._static = self._block(
+            [WALL] * len(walls) + [DOOR] * len(keepouts),
+            ["a wall"] * len(walls) + [k.label for k in keepouts],
+            np.array([*walls, *(k.polygon for k in keepouts)], dtype=object))
         self.windows = tuple(windows)
         self.passage = passage if passage is not None and passage.active else None
         self.placed: dict[str, tuple[ItemSpec, Pose]] = {}
-        self._item_entries: dict[str, list[_Entry]] = {}
+        self._item_blocks: dict[str, ObstacleBlock] = {}
         self._footprints: dict[str, Box] = {}
-        self._entries: list[_Entry] | None = None
-        self._tree: STRtree | None = None
+        self._obstacle_set: frozenset[Box] | None = None
+        self._obstacles: ObstacleIndex | None = None
         self._window_zones: dict[str, list[tuple[str, Polygon]]] = {}
+
+    def _id(self, name: str) -> int:
+        """A stable integer for an item name or a label (the owner column)."""
+        if name not in self._ids:
+            self._ids[name] = len(self._names)
+            self._names.append(name)
+        return self._ids[name]
+
+    def _block(self, kinds: list[int], owners: list[str], geometries: np.ndarray,
+               bounds: np.ndarray | None = None) -> ObstacleBlock:
+        """Obstacles as an :class:`.obstacles.ObstacleBlock`; ``bounds`` when all of
+        them are known to be axis-aligned rectangles, else each shape is tested."""
+        if bounds is None:
+            bounds = np.array([_rectangle(g) or (np.nan,) * 4 for g in geometries],
+                              dtype=float).reshape(-1, 4)
+        return ObstacleBlock(np.array(kinds, dtype=np.int8),
+                             np.array([self._id(o) for o in owners], dtype=np.int64),
+                             geometries, bounds)
 
     # -- state ---------------------------------------------------------------------------
     def add(self, spec: ItemSpec, pose: Pose) -> None:
@@ -240,32 +252,43 @@ class Layout:
         if not spec.rule.non_collision:
             parts = spec.parts(pose.rotation)
             self._footprints[spec.name] = _footprint(parts, pose)
-            self._item_entries[spec.name] = [
-                _Entry("body" if part.is_body else "clearance", spec.name, geometry,
-                       _rectangle(geometry) if pose.yaw else shapely.bounds(geometry).tolist())
-                for part, geometry in zip(parts, _part_shapes(parts, pose))]
-        self._tree = None
+            shapes = _part_shapes(parts, pose)
+            self._item_blocks[spec.name] = self._block(
+                [BODY if part.is_body else CLEARANCE for part in parts],
+                [spec.name] * len(parts), shapes,
+                None if pose.yaw else shapely.bounds(shapes))
+        self._changed()
 
     def remove(self, name: str) -> tuple[ItemSpec, Pose]:
         """Take an item out again; returns what it was."""
-        self._tree = None
-        self._item_entries.pop(name, None)
+        self._item_blocks.pop(name, None)
         self._footprints.pop(name, None)
+        self._changed()
         return self.placed.pop(name)
+
+    def _changed(self) -> None:
+        self._obstacles = None
+        self._obstacle_set = None
 
     def pose(self, name: str) -> Pose | None:
         entry = self.placed.get(name)
         return entry[1] if entry else None
 
-    def _index(self) -> tuple[list[_Entry], STRtree]:
-        if self._tree is None:
-            entries = list(self._static)
-            for item_entries in self._item_entries.values():
-                entries.extend(item_entries)
-            self._entries = entries
-            self._tree = STRtree([e.geometry for e in entries])
-        assert self._entries is not None
-        return self._entries, self._tree
+    def _index(self) -> ObstacleIndex:
+        """The obstacles in the order the old one-by-one scan met them: walls, door
+        zones, then the items in the order they were (last) added."""
+        if self._obstacles is None:
+            self._obstacles = ObstacleIndex([self._static, *self._item_blocks.values()])
+        return self._obstacles
+
+    def _obstacles_without(self, name: str) -> frozenset[Box]:
+        """The footprints of the solid items placed, but that of ``name`` (the passage
+        rule's obstacles when ``name`` is being placed), kept between changes."""
+        if self._obstacle_set is None:
+            self._obstacle_set = frozenset(self._footprints.values())
+        if name not in self._footprints:
+            return self._obstacle_set
+        return frozenset(b for n, b in self._footprints.items() if n != name)
 
     def _windows_for(self, spec: ItemSpec) -> list[tuple[str, Polygon]]:
         if not spec.rule.can_close_window or not self.windows:
@@ -277,19 +300,13 @@ class Layout:
             self._window_zones[spec.name] = zones
         return zones
 
-    @staticmethod
-    def _blocks(spec: ItemSpec, is_body: bool, entry: _Entry, related: frozenset[str]) -> bool:
-        if entry.owner == spec.name:
-            return False
-        if entry.kind == "wall":
-            return True
-        if spec.rule.non_collision:
-            return False
-        if entry.kind == "body":
-            return True
-        if entry.kind == "clearance":
-            return is_body and entry.owner not in related
-        return is_body  # door zones
+    def _blocking(self, index: ObstacleIndex, spec: ItemSpec, part_rows: np.ndarray,
+                  rows: np.ndarray, related: frozenset[str]) -> np.ndarray:
+        """Which hits ``(part_rows, rows)`` block ``spec`` (docs/furniture.md)."""
+        is_body = part_rows == 0  # the body comes first (:func:`.clearance.envelope`)
+        family = [self._ids[n] for n in related if n in self._ids]
+        return index.blocking(rows, is_body, self._ids.get(spec.name, -1),
+                              spec.rule.non_collision, family)
 
     # -- queries -------------------------------------------------------------------------
     def conflicts(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset(),
@@ -298,25 +315,27 @@ class Layout:
 
         With ``first=True`` the search stops at the first conflict found (walls first).
         """
-        entries, tree = self._index()
+        index = self._index()
         parts = spec.parts(pose.rotation)
         geometries = _part_shapes(parts, pose)
         found: list[Conflict] = []
-        hits = tree.query(geometries, predicate="intersects")
-        for part_index, entry_index in sorted(zip(*hits), key=lambda h: (h[1], h[0])):
-            part, entry = parts[part_index], entries[entry_index]
-            if self._blocks(spec, part.is_body, entry, related):
-                found.append(Conflict(part.kind, entry.kind, entry.owner or ""))
-                if first:
-                    return found
+        part_rows, rows = index.hits(geometries)
+        blocking = self._blocking(index, spec, part_rows, rows, related)
+        part_rows, rows = part_rows[blocking], rows[blocking]
+        for k in np.lexsort((part_rows, rows)).tolist():  # by obstacle, then part
+            row = rows[k]
+            found.append(Conflict(parts[part_rows[k]].kind, KINDS[index.kinds[row]],
+                                  self._names[index.owners[row]]))
+            if first:
+                return found
         for label, zone in self._windows_for(spec):
             if zone.intersects(geometries[0]):
                 found.append(Conflict("body", "window", label))
                 if first:
                     return found
         if not found and self.passage is not None and not spec.rule.non_collision:
-            others = [b for name, b in self._footprints.items() if name != spec.name]
-            blockage = self.passage.blockage(others, _footprint(parts, pose))
+            blockage = self.passage.blockage(self._obstacles_without(spec.name),
+                                             _footprint(parts, pose))
             if blockage is not None:
                 found.append(Conflict("body", "passage" if blockage.kind == "door" else
                                       "pocket", blockage.what))
@@ -356,7 +375,7 @@ class Layout:
         """
         if hi < lo:
             return []
-        entries, tree = self._index()
+        index = self._index()
         parts = spec.parts(rotation)
         boxes = np.array([p.box for p in parts])
         a0, a1 = (boxes[:, 0], boxes[:, 2]) if axis == 0 else (boxes[:, 1], boxes[:, 3])
@@ -365,53 +384,46 @@ class Layout:
         across = (fixed + p0 + EPS, fixed + p1 - EPS)
         strips = (shapely.box(along[0], across[0], along[1], across[1]) if axis == 0
                   else shapely.box(across[0], along[0], across[1], along[1]))
-        rectangles: list[tuple[int, Box]] = []
-        shapes: list[tuple[int, Polygon]] = []
-        for i, j in zip(*tree.query(strips, predicate="intersects")):
-            entry = entries[j]
-            if self._blocks(spec, parts[i].is_body, entry, related):
-                rectangle = entry.rectangle
-                if rectangle is None:
-                    shapes.append((i, entry.geometry))
-                else:
-                    rectangles.append((i, rectangle))
+        part_rows, rows = index.hits(strips)
+        blocking = self._blocking(index, spec, part_rows, rows, related)
+        part_rows, rows = part_rows[blocking], rows[blocking]
+        rectangle = index.is_rectangle[rows]
+        rect_parts, rect_bounds = part_rows[rectangle], index.bounds[rows[rectangle]]
+        shape_parts = part_rows[~rectangle].tolist()
+        shapes = index.geometries[rows[~rectangle]].tolist()
         for _, zone in self._windows_for(spec):
             if zone.intersects(strips[0]):
-                rectangle = _rectangle(zone)
-                if rectangle is None:
-                    shapes.append((0, zone))
+                zone_bounds = _rectangle(zone)
+                if zone_bounds is None:
+                    shape_parts.append(0)
+                    shapes.append(zone)
                 else:
-                    rectangles.append((0, rectangle))
+                    rect_parts = np.append(rect_parts, 0)
+                    rect_bounds = np.vstack([rect_bounds, zone_bounds])
         strip_bounds = shapely.bounds(strips)
-        spans: list[tuple[int, float, float]] = []
-        for i, r in rectangles:  # clipping a rectangle is bounds arithmetic
-            c = (max(r[0], strip_bounds[i, 0]), max(r[1], strip_bounds[i, 1]),
-                 min(r[2], strip_bounds[i, 2]), min(r[3], strip_bounds[i, 3]))
-            if (c[2] - c[0]) * (c[3] - c[1]) > _AREA_EPS and c[2] > c[0] and c[3] > c[1]:
-                spans.append((i, c[axis], c[axis + 2]))
+        span_parts, span_lo, span_hi = _clip_rectangles(rect_parts, rect_bounds, strip_bounds,
+                                                        axis)
         if shapes:
-            index = np.array([i for i, _ in shapes])
-            clipped = shapely.intersection(np.array([g for _, g in shapes], dtype=object),
-                                           strips[index])
+            shape_index = np.array(shape_parts)
+            clipped = shapely.intersection(np.array(shapes, dtype=object), strips[shape_index])
             pieces, owner = shapely.get_parts(clipped, return_index=True)
             keep = shapely.area(pieces) > _AREA_EPS
-            for i, b in zip(index[owner[keep]], shapely.bounds(pieces[keep])):
-                spans.append((int(i), b[axis], b[axis + 2]))
-        forbidden = [(s0 - a1[i], s1 - a0[i]) for i, s0, s1 in spans]
-        return _complement(forbidden, lo, hi)
+            piece_bounds = shapely.bounds(pieces[keep])
+            span_parts = np.concatenate([span_parts, shape_index[owner[keep]]])
+            span_lo = np.concatenate([span_lo, piece_bounds[:, axis]])
+            span_hi = np.concatenate([span_hi, piece_bounds[:, axis + 2]])
+        return complement(span_lo - a1[span_parts], span_hi - a0[span_parts], lo, hi)
 
 
-def _complement(forbidden: list[tuple[float, float]], lo: float, hi: float
-                ) -> list[tuple[float, float]]:
-    """``[lo, hi]`` minus the union of open intervals."""
-    free = []
-    cursor = lo  # the smallest point not known to be forbidden
-    for start, end in sorted(forbidden):
-        if cursor > hi:
-            break
-        if start >= cursor:
-            free.append((cursor, min(start, hi)))
-        cursor = max(cursor, end)
-    if cursor <= hi:
-        free.append((cursor, hi))
-    return free
+def _clip_rectangles(parts: np.ndarray, bounds: np.ndarray, strip_bounds: np.ndarray,
+                     axis: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Clip each rectangle ``bounds[k]`` to the strip of its part ``parts[k]``: the parts
+    whose strip it overlaps with an area, and the extent of the overlap along ``axis``
+    (start, end). Bounds arithmetic; ties keep the rectangle's own coordinate, as
+    Python's ``max``/``min`` do."""
+    strips = strip_bounds[parts]
+    low = np.where(strips[:, :2] > bounds[:, :2], strips[:, :2], bounds[:, :2])
+    high = np.where(strips[:, 2:] < bounds[:, 2:], strips[:, 2:], bounds[:, 2:])
+    size = high - low
+    keep = (size[:, 0] * size[:, 1] > _AREA_EPS) & (size[:, 0] > 0) & (size[:, 1] > 0)
+    return parts[keep], low[keep, axis], high[keep, axis]
