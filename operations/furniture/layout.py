@@ -40,7 +40,7 @@ from shapely import affinity
 from shapely.geometry import Polygon
 
 from .clearance import Box, EnvelopePart, Keepout, OpeningStrip, envelope
-from .obstacles import BODY, CLEARANCE, DOOR, KINDS, WALL, ObstacleBlock, ObstacleIndex, complement
+from .obstacles import BODY, CLEARANCE, DOOR, WALL, ObstacleBlock, ObstacleIndex, complement
 from .passage import Passage
 from .rules import FurnitureRule
 
@@ -50,6 +50,10 @@ EPS = 1e-6
 """Boxes are shrunk by this much (m) before intersection tests: touching is not overlap."""
 
 _AREA_EPS = 1e-12
+_MAX_PARTS = 8
+"""More than the parts of an envelope (a body and four clearance boxes)."""
+_FEW_HITS = 16
+"""Up to this many obstacles met, a query tests them one by one; past it, with numpy."""
 
 
 @dataclass(frozen=True)
@@ -78,11 +82,25 @@ class ItemSpec:
         return _envelope(self.width, self.depth, rotation % 4, r.clearance_front,
                          r.clearance_back, r.clearance_side)
 
+    def boxes(self, rotation: int) -> np.ndarray:
+        """The boxes of :meth:`parts` as a ``(parts, 4)`` array (made once per shape)."""
+        r = self.rule
+        return _envelope_boxes(self.width, self.depth, rotation % 4, r.clearance_front,
+                               r.clearance_back, r.clearance_side)
+
 
 @lru_cache(maxsize=4096)
 def _envelope(width: float, depth: float, rotation: int, front: float, back: float,
               side: float) -> tuple[EnvelopePart, ...]:
     return envelope(width, depth, rotation, front=front, back=back, side=side)
+
+
+@lru_cache(maxsize=4096)
+def _envelope_boxes(width: float, depth: float, rotation: int, front: float, back: float,
+                    side: float) -> np.ndarray:
+    boxes = np.array([p.box for p in _envelope(width, depth, rotation, front, back, side)])
+    boxes.flags.writeable = False
+    return boxes
 
 
 @dataclass(frozen=True)
@@ -136,29 +154,30 @@ def _rectangle(geometry: Polygon) -> Box | None:
     return (minx, miny, maxx, maxy)
 
 
-def _part_boxes(parts: tuple[EnvelopePart, ...], x: float, z: float) -> np.ndarray:
-    """The parts placed at ``(x, z)`` as shapely boxes shrunk by :data:`EPS`."""
-    b = np.array([p.box for p in parts]) + np.array([x + EPS, z + EPS, x - EPS, z - EPS])
+def _part_boxes(boxes: np.ndarray, x: float, z: float) -> np.ndarray:
+    """The part ``boxes`` (:meth:`ItemSpec.boxes`) placed at ``(x, z)`` as shapely boxes
+    shrunk by :data:`EPS`."""
+    b = boxes + np.array([x + EPS, z + EPS, x - EPS, z - EPS])
     return shapely.box(b[:, 0], b[:, 1], b[:, 2], b[:, 3])
 
 
-def _part_shapes(parts: tuple[EnvelopePart, ...], pose: Pose) -> np.ndarray:
-    """The parts placed at ``pose`` (shrunk by :data:`EPS`), turned by its free yaw about
-    the item's centre (the sense of :meth:`cga.model.FurnitureItem.footprint`)."""
-    boxes = _part_boxes(parts, pose.x, pose.z)
+def _part_shapes(boxes: np.ndarray, pose: Pose) -> np.ndarray:
+    """The part ``boxes`` placed at ``pose`` (shrunk by :data:`EPS`), turned by its free
+    yaw about the item's centre (the sense of :meth:`cga.model.FurnitureItem.footprint`)."""
+    boxes = _part_boxes(boxes, pose.x, pose.z)
     if not pose.yaw:
         return boxes
     return np.array([affinity.rotate(b, -pose.yaw, origin=(pose.x, pose.z), use_radians=True)
                      for b in boxes], dtype=object)
 
 
-def _footprint(parts: tuple[EnvelopePart, ...], pose: Pose) -> Box:
-    """The body box of ``parts`` placed at ``pose``, exact; for a pose with a free yaw,
+def _footprint(spec: ItemSpec, pose: Pose) -> Box:
+    """The body box of ``spec`` placed at ``pose``, exact; for a pose with a free yaw,
     the bounds of the turned body (the passage rule then sees a slightly larger
     obstacle, never a smaller one)."""
-    b = parts[0].box
+    b = spec.parts(pose.rotation)[0].box
     if pose.yaw:
-        minx, minz, maxx, maxz = _part_shapes(parts[:1], pose)[0].bounds
+        minx, minz, maxx, maxz = _part_shapes(spec.boxes(pose.rotation)[:1], pose)[0].bounds
         return (minx - EPS, minz - EPS, maxx + EPS, maxz + EPS)
     return (pose.x + b[0], pose.z + b[1], pose.x + b[2], pose.z + b[3])
 
@@ -227,6 +246,17 @@ class Layout:
         self._obstacles: ObstacleIndex | None = None
         self._window_zones: dict[str, list[tuple[str, Polygon]]] = {}
 
+    def emptied(self) -> "Layout":
+        """An empty layout of the same room: the walls, door zones, windows and passage
+        rule are shared, not made again (the solver's attempts start from this)."""
+        empty = object.__new__(Layout)
+        empty.__dict__.update(self.__dict__)
+        empty._ids, empty._names = dict(self._ids), list(self._names)
+        empty.placed, empty._item_blocks, empty._footprints = {}, {}, {}
+        empty._window_zones = {}
+        empty._changed()
+        return empty
+
     def _id(self, name: str) -> int:
         """A stable integer for an item name or a label (the owner column)."""
         if name not in self._ids:
@@ -241,9 +271,7 @@ class Layout:
         if bounds is None:
             bounds = np.array([_rectangle(g) or (np.nan,) * 4 for g in geometries],
                               dtype=float).reshape(-1, 4)
-        return ObstacleBlock(np.array(kinds, dtype=np.int8),
-                             np.array([self._id(o) for o in owners], dtype=np.int64),
-                             geometries, bounds)
+        return ObstacleBlock.make(kinds, [self._id(o) for o in owners], geometries, bounds)
 
     # -- state ---------------------------------------------------------------------------
     def add(self, spec: ItemSpec, pose: Pose) -> None:
@@ -251,8 +279,8 @@ class Layout:
         self.placed[spec.name] = (spec, pose)
         if not spec.rule.non_collision:
             parts = spec.parts(pose.rotation)
-            self._footprints[spec.name] = _footprint(parts, pose)
-            shapes = _part_shapes(parts, pose)
+            self._footprints[spec.name] = _footprint(spec, pose)
+            shapes = _part_shapes(spec.boxes(pose.rotation), pose)
             self._item_blocks[spec.name] = self._block(
                 [BODY if part.is_body else CLEARANCE for part in parts],
                 [spec.name] * len(parts), shapes,
@@ -300,13 +328,20 @@ class Layout:
             self._window_zones[spec.name] = zones
         return zones
 
-    def _blocking(self, index: ObstacleIndex, spec: ItemSpec, part_rows: np.ndarray,
-                  rows: np.ndarray, related: frozenset[str]) -> np.ndarray:
-        """Which hits ``(part_rows, rows)`` block ``spec`` (docs/furniture.md)."""
-        is_body = part_rows == 0  # the body comes first (:func:`.clearance.envelope`)
+    def _blocking_hits(self, index: ObstacleIndex, spec: ItemSpec, part_rows: np.ndarray,
+                       rows: np.ndarray, related: frozenset[str]) -> list[tuple[int, int]]:
+        """The hits ``(part_rows, rows)`` that block ``spec`` (docs/furniture.md), as
+        ``(row, part)`` by row, then part: numpy for many hits (a crowded room), a plain
+        loop for the few of an ordinary room, where numpy's cost per call dominates."""
+        owner = self._ids.get(spec.name, -1)
         family = [self._ids[n] for n in related if n in self._ids]
-        return index.blocking(rows, is_body, self._ids.get(spec.name, -1),
-                              spec.rule.non_collision, family)
+        non_collision = spec.rule.non_collision
+        if len(rows) > _FEW_HITS:
+            blocking = index.blocking(rows, part_rows == 0, owner, non_collision, family)
+            order = np.sort(rows[blocking] * _MAX_PARTS + part_rows[blocking]).tolist()
+            return [divmod(k, _MAX_PARTS) for k in order]
+        return sorted((row, part) for part, row in zip(part_rows.tolist(), rows.tolist())
+                      if index.blocks(row, part == 0, owner, non_collision, family))
 
     # -- queries -------------------------------------------------------------------------
     def conflicts(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset(),
@@ -317,17 +352,15 @@ class Layout:
         """
         index = self._index()
         parts = spec.parts(pose.rotation)
-        geometries = _part_shapes(parts, pose)
+        geometries = _part_shapes(spec.boxes(pose.rotation), pose)
         found: list[Conflict] = []
         part_rows, rows = index.hits(geometries)
-        blocking = self._blocking(index, spec, part_rows, rows, related)
-        part_rows, rows = part_rows[blocking], rows[blocking]
-        for k in np.lexsort((part_rows, rows)).tolist():  # by obstacle, then part
-            row = rows[k]
-            found.append(Conflict(parts[part_rows[k]].kind, KINDS[index.kinds[row]],
-                                  self._names[index.owners[row]]))
-            if first:
-                return found
+        if len(rows):
+            for row, part in self._blocking_hits(index, spec, part_rows, rows, related):
+                found.append(Conflict(parts[part].kind, index.kind(row),
+                                      self._names[index.owner(row)]))
+                if first:  # the first by obstacle, then part (walls come first)
+                    return found
         for label, zone in self._windows_for(spec):
             if zone.intersects(geometries[0]):
                 found.append(Conflict("body", "window", label))
@@ -335,7 +368,7 @@ class Layout:
                     return found
         if not found and self.passage is not None and not spec.rule.non_collision:
             blockage = self.passage.blockage(self._obstacles_without(spec.name),
-                                             _footprint(parts, pose))
+                                             _footprint(spec, pose))
             if blockage is not None:
                 found.append(Conflict("body", "passage" if blockage.kind == "door" else
                                       "pocket", blockage.what))
@@ -376,8 +409,7 @@ class Layout:
         if hi < lo:
             return []
         index = self._index()
-        parts = spec.parts(rotation)
-        boxes = np.array([p.box for p in parts])
+        boxes = spec.boxes(rotation)
         a0, a1 = (boxes[:, 0], boxes[:, 2]) if axis == 0 else (boxes[:, 1], boxes[:, 3])
         p0, p1 = (boxes[:, 1], boxes[:, 3]) if axis == 0 else (boxes[:, 0], boxes[:, 2])
         along = (lo + a0, hi + a1)
@@ -385,35 +417,92 @@ class Layout:
         strips = (shapely.box(along[0], across[0], along[1], across[1]) if axis == 0
                   else shapely.box(across[0], along[0], across[1], along[1]))
         part_rows, rows = index.hits(strips)
-        blocking = self._blocking(index, spec, part_rows, rows, related)
-        part_rows, rows = part_rows[blocking], rows[blocking]
+        hits = self._blocking_hits(index, spec, part_rows, rows, related)
+        windows = [zone for _, zone in self._windows_for(spec) if zone.intersects(strips[0])]
+        strip_bounds = shapely.bounds(strips)
+        if len(hits) + len(windows) <= _FEW_HITS:
+            spans = self._spans_few(index, hits, windows, strips, strip_bounds.tolist(), axis)
+            return _complement_few([(s0 - a1[i], s1 - a0[i]) for i, s0, s1 in spans], lo, hi)
+        rows = np.array([row for row, _ in hits], dtype=np.int64)
+        part_rows = np.array([part for _, part in hits], dtype=np.int64)
         rectangle = index.is_rectangle[rows]
         rect_parts, rect_bounds = part_rows[rectangle], index.bounds[rows[rectangle]]
         shape_parts = part_rows[~rectangle].tolist()
         shapes = index.geometries[rows[~rectangle]].tolist()
-        for _, zone in self._windows_for(spec):
-            if zone.intersects(strips[0]):
-                zone_bounds = _rectangle(zone)
-                if zone_bounds is None:
-                    shape_parts.append(0)
-                    shapes.append(zone)
-                else:
-                    rect_parts = np.append(rect_parts, 0)
-                    rect_bounds = np.vstack([rect_bounds, zone_bounds])
-        strip_bounds = shapely.bounds(strips)
+        for zone in windows:
+            zone_bounds = _rectangle(zone)
+            if zone_bounds is None:
+                shape_parts.append(0)
+                shapes.append(zone)
+            else:
+                rect_parts = np.append(rect_parts, 0)
+                rect_bounds = np.vstack([rect_bounds, zone_bounds])
         span_parts, span_lo, span_hi = _clip_rectangles(rect_parts, rect_bounds, strip_bounds,
                                                         axis)
         if shapes:
-            shape_index = np.array(shape_parts)
-            clipped = shapely.intersection(np.array(shapes, dtype=object), strips[shape_index])
-            pieces, owner = shapely.get_parts(clipped, return_index=True)
-            keep = shapely.area(pieces) > _AREA_EPS
-            piece_bounds = shapely.bounds(pieces[keep])
-            span_parts = np.concatenate([span_parts, shape_index[owner[keep]]])
-            span_lo = np.concatenate([span_lo, piece_bounds[:, axis]])
-            span_hi = np.concatenate([span_hi, piece_bounds[:, axis + 2]])
+            shape_spans = _clip_shapes(shape_parts, shapes, strips, axis)
+            span_parts = np.concatenate([span_parts, [i for i, _, _ in shape_spans]])
+            span_lo = np.concatenate([span_lo, [v for _, v, _ in shape_spans]])
+            span_hi = np.concatenate([span_hi, [v for _, _, v in shape_spans]])
+        span_parts = span_parts.astype(np.int64)
         return complement(span_lo - a1[span_parts], span_hi - a0[span_parts], lo, hi)
 
+    @staticmethod
+    def _spans_few(index: ObstacleIndex, hits: list[tuple[int, int]], windows: list[Polygon],
+                   strips: np.ndarray, strip_bounds: list[list[float]], axis: int
+                   ) -> list[tuple[int, float, float]]:
+        """The few blocking ``hits`` and window ``windows`` clipped to the strips of their
+        parts, one by one: ``(part, start, end)`` along ``axis``."""
+        rectangles: list[tuple[int, Box]] = []
+        shapes: list[tuple[int, Polygon]] = []
+        for row, part in hits:
+            if index.is_rectangle[row]:
+                rectangles.append((part, index.bounds[row].tolist()))
+            else:
+                shapes.append((part, index.geometries[row]))
+        for zone in windows:
+            zone_bounds = _rectangle(zone)
+            if zone_bounds is None:
+                shapes.append((0, zone))
+            else:
+                rectangles.append((0, zone_bounds))
+        spans: list[tuple[int, float, float]] = []
+        for i, r in rectangles:  # clipping a rectangle is bounds arithmetic
+            b = strip_bounds[i]
+            c = (max(r[0], b[0]), max(r[1], b[1]), min(r[2], b[2]), min(r[3], b[3]))
+            if (c[2] - c[0]) * (c[3] - c[1]) > _AREA_EPS and c[2] > c[0] and c[3] > c[1]:
+                spans.append((i, c[axis], c[axis + 2]))
+        if shapes:
+            spans += _clip_shapes([i for i, _ in shapes], [g for _, g in shapes], strips, axis)
+        return spans
+
+
+def _clip_shapes(parts: list[int], shapes: list[Polygon], strips: np.ndarray, axis: int
+                 ) -> list[tuple[int, float, float]]:
+    """Obstacles that are not axis-aligned rectangles clipped exactly to the strips of
+    their parts: ``(part, start, end)`` along ``axis`` of each piece with an area."""
+    index = np.array(parts, dtype=np.int64)
+    clipped = shapely.intersection(np.array(shapes, dtype=object), strips[index])
+    pieces, owner = shapely.get_parts(clipped, return_index=True)
+    keep = shapely.area(pieces) > _AREA_EPS
+    return [(int(i), b[axis], b[axis + 2])
+            for i, b in zip(index[owner[keep]], shapely.bounds(pieces[keep]).tolist())]
+
+
+def _complement_few(forbidden: list[tuple[float, float]], lo: float, hi: float
+                    ) -> list[tuple[float, float]]:
+    """:func:`.obstacles.complement` for a few intervals, in plain Python."""
+    free = []
+    cursor = lo  # the smallest point not known to be forbidden
+    for start, end in sorted(forbidden):
+        if cursor > hi:
+            break
+        if start >= cursor:
+            free.append((cursor, min(start, hi)))
+        cursor = max(cursor, end)
+    if cursor <= hi:
+        free.append((cursor, hi))
+    return free
 
 def _clip_rectangles(parts: np.ndarray, bounds: np.ndarray, strip_bounds: np.ndarray,
                      axis: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -422,8 +511,11 @@ def _clip_rectangles(parts: np.ndarray, bounds: np.ndarray, strip_bounds: np.nda
     (start, end). Bounds arithmetic; ties keep the rectangle's own coordinate, as
     Python's ``max``/``min`` do."""
     strips = strip_bounds[parts]
-    low = np.where(strips[:, :2] > bounds[:, :2], strips[:, :2], bounds[:, :2])
-    high = np.where(strips[:, 2:] < bounds[:, 2:], strips[:, 2:], bounds[:, 2:])
-    size = high - low
-    keep = (size[:, 0] * size[:, 1] > _AREA_EPS) & (size[:, 0] > 0) & (size[:, 1] > 0)
-    return parts[keep], low[keep, axis], high[keep, axis]
+    clipped = np.where((strips - bounds) * _INWARD > 0, strips, bounds)
+    size = clipped[:, 2:] - clipped[:, :2]
+    keep = (size[:, 0] * size[:, 1] > _AREA_EPS) & (size > 0).all(axis=1)
+    return parts[keep], clipped[keep, axis], clipped[keep, axis + 2]
+
+
+_INWARD = np.array([1.0, 1.0, -1.0, -1.0])
+"""Signs that make "the strip's side lies inside the rectangle's" a positive difference."""

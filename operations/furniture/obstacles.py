@@ -34,17 +34,26 @@ KINDS = ("wall", "body", "clearance", "door")
 @dataclass(frozen=True)
 class ObstacleBlock:
     """Obstacles that come and go together: a room's walls and door zones, or the body
-    and clearance boxes of one placed item.
+    and clearance boxes of one placed item (:meth:`make`)."""
 
-    ``kinds`` holds codes (:data:`WALL` ...), ``owners`` the id of the item or label
-    each obstacle belongs to, ``geometries`` the shapely polygons and ``bounds`` one
-    row ``(minx, minz, maxx, maxz)`` per obstacle that is an axis-aligned rectangle,
-    NaN for any other shape (a door's swing, a turned item)."""
-
-    kinds: np.ndarray
-    owners: np.ndarray
+    columns: np.ndarray
+    """``(n, 3)`` integers per obstacle: ``2 * kind`` (the row of :data:`_BLOCKED_BY`
+    for a clearance box hitting it), the owner's id, and the owner's id again for a
+    clearance box, else -1 (whose clearance the owner's family may stand in)."""
     geometries: np.ndarray
     bounds: np.ndarray
+    """``(n, 4)``: ``(minx, minz, maxx, maxz)`` of an axis-aligned rectangle; NaN for any
+    other shape (a door's swing, a turned item)."""
+
+    @classmethod
+    def make(cls, kinds: Sequence[int], owners: Sequence[int], geometries: np.ndarray,
+             bounds: np.ndarray) -> "ObstacleBlock":
+        """A block of obstacles of ``kinds`` (:data:`WALL` ...) owned by the ids
+        ``owners`` (an item or a label)."""
+        kind = np.array(kinds, dtype=np.int64)
+        owner = np.array(owners, dtype=np.int64)
+        columns = np.stack([2 * kind, owner, np.where(kind == CLEARANCE, owner, -1)], axis=1)
+        return cls(columns, geometries, bounds)
 
 
 class ObstacleIndex:
@@ -52,12 +61,20 @@ class ObstacleIndex:
     (row order decides which conflict a query reports first)."""
 
     def __init__(self, blocks: Sequence[ObstacleBlock]):
-        self.kinds = np.concatenate([b.kinds for b in blocks])
-        self.owners = np.concatenate([b.owners for b in blocks])
+        self.columns = np.concatenate([b.columns for b in blocks])
         self.geometries = np.concatenate([b.geometries for b in blocks])
         self.bounds = np.concatenate([b.bounds for b in blocks])
         self.is_rectangle = ~np.isnan(self.bounds[:, 0])
         self.tree = STRtree(self.geometries)
+        self._rows: list[list[int]] | None = None
+
+    def kind(self, row: int) -> str:
+        """The kind name of obstacle ``row`` (see :data:`KINDS`)."""
+        return KINDS[int(self.columns[row, 0]) // 2]
+
+    def owner(self, row: int) -> int:
+        """The owner id of obstacle ``row``."""
+        return int(self.columns[row, 1])
 
     def hits(self, geometries: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(query index, row)`` of every obstacle each of ``geometries`` intersects."""
@@ -69,14 +86,30 @@ class ObstacleIndex:
         """Which obstacles ``rows`` block the parts they were hit by (``part_is_body``:
         the part is the item's body), for the item ``owner``; ``related`` are the ids
         of its parent and children (see :meth:`.layout.Layout.conflicts`)."""
-        kinds, owners = self.kinds[rows], self.owners[rows]
         table = _RUG_BLOCKED_BY if non_collision else _BLOCKED_BY
-        blocked = table[2 * kinds + part_is_body] & (owners != owner)
-        if not non_collision:
-            clearance = kinds == CLEARANCE
+        columns = self.columns[rows]
+        blocked = table[columns[:, 0] + part_is_body] & (columns[:, 1] != owner)
+        if related and not non_collision:
             for member in related:  # the family may stand in each other's clearances
-                blocked &= ~(clearance & (owners == member))
+                blocked &= columns[:, 2] != member
         return blocked
+
+    def blocks(self, row: int, part_is_body: bool, owner: int, non_collision: bool,
+               related: Collection[int]) -> bool:
+        """:meth:`blocking` for one hit, without numpy's cost per call: for the few hits
+        of a query in an ordinary room."""
+        code, row_owner, clearance_owner = self.rows[row]
+        if row_owner == owner:
+            return False
+        table = _RUG_BLOCKED_BY_LIST if non_collision else _BLOCKED_BY_LIST
+        return table[code + part_is_body] and (non_collision or clearance_owner not in related)
+
+    @property
+    def rows(self) -> list[list[int]]:
+        """:attr:`columns` as Python lists (made on first use)."""
+        if self._rows is None:
+            self._rows = self.columns.tolist()
+        return self._rows
 
 
 _BLOCKED_BY = np.array([
@@ -89,6 +122,8 @@ _BLOCKED_BY = np.array([
 _RUG_BLOCKED_BY = np.array([True, True, False, False, False, False, False, False])
 """What blocks what (docs/furniture.md), by ``2 * kind + is_body``; a non-colliding
 item (a rug) is blocked by the walls only."""
+_BLOCKED_BY_LIST = _BLOCKED_BY.tolist()
+_RUG_BLOCKED_BY_LIST = _RUG_BLOCKED_BY.tolist()
 
 
 def complement(starts: np.ndarray, ends: np.ndarray, lo: float, hi: float

@@ -30,7 +30,7 @@ their footprints), and a candidate costs one rectangle difference and a few pred
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -117,7 +117,7 @@ class Passage:
         """False when no door of the room can be reached even in the empty room."""
         return len(self.labels) > 0
 
-    def blockage(self, obstacles: Sequence[Box], candidate: Box) -> Blockage | None:
+    def blockage(self, obstacles: Collection[Box], candidate: Box) -> Blockage | None:
         """What breaks the rule with ``candidate`` added to ``obstacles`` (None if nothing).
 
         Parameters

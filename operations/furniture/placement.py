@@ -169,6 +169,9 @@ class Placer:
         Every item of the room (to know parents and children).
     rng:
         Random stream for free-standing items' extra start points and orientations.
+    edges:
+        The room's :func:`room_edges`, when known (each attempt of the solver places
+        into the same room).
 
     Notes
     -----
@@ -178,9 +181,10 @@ class Placer:
     the sofa first and found out only later that the tv board had no wall left.
     """
 
-    def __init__(self, layout: Layout, specs: Sequence[ItemSpec], rng: np.random.Generator):
+    def __init__(self, layout: Layout, specs: Sequence[ItemSpec], rng: np.random.Generator,
+                 edges: Sequence[Edge] | None = None):
         self.layout = layout
-        self.edges = room_edges(layout.interior)
+        self.edges = list(edges) if edges is not None else room_edges(layout.interior)
         self.corners = convex_corners(self.edges)
         self.rng = rng
         self.children: dict[str, list[ItemSpec]] = {}

@@ -44,7 +44,7 @@ from .disorder import disturb
 from .desks import MAX_COPIES, MAX_TESTS, DeskLayout, Family, copies, lay_out_desks
 from .layout import ItemSpec, Layout, Pose
 from .passage import PASSAGE_WIDTH, Passage
-from .placement import Placer
+from .placement import Edge, Placer, room_edges
 from .rules import FurnitureRules
 from .steering import random_start, separation_steering
 from .variation import jittered_size
@@ -165,12 +165,13 @@ def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
 
 
 def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
-                iterations: int, passage: Passage | None, groups: _Copies,
+                iterations: int, room: tuple[Layout, list[Edge]], groups: _Copies,
                 desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout]
                 ) -> tuple[Placer, list[tuple[str, str]]]:
+    """One attempt; ``room`` is the room's empty layout and its edges, made once."""
     starts = _starts(site, specs, rng, iterations, groups)
-    layout = Layout(site.interior, list(site.keepouts), list(site.windows), passage)
-    placer = Placer(layout, specs, rng)
+    layout = room[0].emptied()
+    placer = Placer(layout, specs, rng, room[1])
     left_out = []
     for spec in specs:
         if spec.name in groups.extra:
@@ -247,11 +248,13 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     specs, crowded = _within_floor(site, specs)
     specs, groups = _with_copies(site, specs)
     passage = Passage(site.interior, site.doors, passage_width) if passage_width > 0 else None
+    room = (Layout(site.interior, list(site.keepouts), list(site.windows), passage),
+            room_edges(site.interior))
     best: tuple[Placer, list[tuple[str, str]]] | None = None
     desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout] = {}
     stale = 0
     for _ in range(max(1, attempts)):
-        placer, left_out = _solve_once(site, specs, rng, steering_iterations, passage, groups,
+        placer, left_out = _solve_once(site, specs, rng, steering_iterations, room, groups,
                                        desk_layouts)
         if best is None or len(placer.layout.placed) > len(best[0].layout.placed):
             best, stale = (placer, left_out), 0

@@ -1,0 +1,173 @@
+"""The indexed layout queries give the brute-force answers.
+
+:class:`~cga.operations.furniture.layout.Layout` answers "what blocks this pose" and "where
+along this line is nothing in the way" from an STRtree and numpy columns, with a plain
+loop for few hits. Here random layouts are checked against an independent brute force:
+every obstacle of the room built from the envelope and tested with shapely one by one,
+by the blocking table of docs/furniture.md.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from shapely.geometry import Point, Polygon, box
+from shapely.ops import unary_union
+
+import cga.operations.furniture.layout as layout_module
+from cga.operations.furniture.clearance import Keepout, OpeningStrip, envelope
+from cga.operations.furniture.layout import EPS, ItemSpec, Layout, Pose
+from cga.operations.furniture.obstacles import complement
+from cga.operations.furniture.rules import FurnitureRule
+
+ROOMS = [box(0, 0, 6, 5), unary_union([box(0, 0, 6, 3), box(0, 3, 3, 6)])]
+DOOR = Keepout("the swing of door 1", Point(1, 0).buffer(0.9).intersection(box(1, 0, 2, 1)))
+WINDOW = OpeningStrip("window 2", (4.0, 0.0), (1.0, 0.0), (0.0, 1.0), 1.2, 0.0)
+
+
+def _spec(name: str, w: float, d: float, *, front: float = 0.0, side: float = 0.0,
+          rug: bool = False, window: bool = False, parent: str | None = None) -> ItemSpec:
+    rule = FurnitureRule(room="Livingroom", name=name, clearance_front=front,
+                         clearance_side=side, non_collision=rug,
+                         can_close_window=window and not rug,  # (a rug covers no window)
+                         pair_with=parent, has_pair=parent is not None)
+    return ItemSpec(rule, name, (w, 1.0, d))
+
+
+def _parts(spec: ItemSpec, pose: Pose) -> list[tuple[bool, Polygon]]:
+    """(is body, shape shrunk by EPS) of each envelope box, built afresh."""
+    r = spec.rule
+    out = []
+    for part in envelope(spec.width, spec.depth, pose.rotation % 4, front=r.clearance_front,
+                         back=r.clearance_back, side=r.clearance_side):
+        b = part.box
+        out.append((part.kind == "body", box(pose.x + b[0] + EPS, pose.z + b[1] + EPS,
+                                             pose.x + b[2] - EPS, pose.z + b[3] - EPS)))
+    return out
+
+
+def brute_blocked(room: Polygon, placed: list[tuple[ItemSpec, Pose]], spec: ItemSpec,
+                  pose: Pose, related: frozenset[str], windows: bool) -> bool:
+    """Whether anything blocks ``spec`` at ``pose`` (docs/furniture.md), one by one."""
+    for is_body, shape in _parts(spec, pose):
+        if not shape.within(room):
+            return True
+        if spec.rule.non_collision:
+            continue
+        for other, other_pose in placed:
+            if other.name == spec.name or other.rule.non_collision:
+                continue
+            for other_body, other_shape in _parts(other, other_pose):
+                if not shape.intersects(other_shape):
+                    continue
+                if other_body or (is_body and other.name not in related):
+                    return True
+        if is_body and shape.intersects(DOOR.polygon):
+            return True
+        if is_body and windows and spec.rule.can_close_window and shape.intersects(
+                WINDOW.zone(spec.depth + spec.rule.clearance_front)):
+            return True
+    return False
+
+
+item = st.tuples(st.floats(0.3, 1.6), st.floats(0.3, 1.2), st.floats(0, 0.4),
+                 st.floats(0, 0.3), st.booleans(), st.booleans(),
+                 st.floats(0.2, 5.8), st.floats(0.2, 5.8), st.integers(0, 3))
+
+
+def _layout(room_index: int, items: list, windows: bool
+            ) -> tuple[Layout, list[tuple[ItemSpec, Pose]]]:
+    room = ROOMS[room_index]
+    layout = Layout(room, [DOOR], [WINDOW] if windows else [])
+    placed = []
+    for k, (w, d, front, side, rug, window, x, z, rotation) in enumerate(items):
+        spec = _spec(f"item{k}", w, d, front=front, side=side, rug=rug and k % 3 == 0,
+                     window=window, parent="item0" if k == 1 else None)
+        layout.add(spec, Pose(x, z, rotation))
+        placed.append((spec, Pose(x, z, rotation)))
+    return layout, placed
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 1), st.lists(item, max_size=24), item, st.booleans())
+def test_conflicts_agree_with_the_brute_force(room_index, items, candidate, windows):
+    layout, placed = _layout(room_index, items, windows)
+    w, d, front, side, rug, window, x, z, rotation = candidate
+    spec = _spec("new", w, d, front=front, side=side, rug=rug, window=window)
+    related = frozenset({"item1"}) if len(items) > 1 else frozenset()
+    pose = Pose(x, z, rotation)
+    found = layout.conflicts(spec, pose, related)
+    assert bool(found) == brute_blocked(ROOMS[room_index], placed, spec, pose, related,
+                                        windows)
+    first = layout.conflicts(spec, pose, related, first=True)
+    assert first == found[:1]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 1), st.lists(item, max_size=24), item, st.integers(0, 1),
+       st.booleans(), st.randoms(use_true_random=False))
+def test_free_intervals_agree_with_the_brute_force(room_index, items, candidate, axis,
+                                                   windows, random):
+    layout, placed = _layout(room_index, items, windows)
+    w, d, front, side, rug, window, x, z, rotation = candidate
+    spec = _spec("new", w, d, front=front, side=side, rug=rug, window=window)
+    fixed = z if axis == 0 else x
+    intervals = layout.free_intervals(spec, rotation, axis, fixed, 0.0, 6.0)
+    assert all(a <= b for a, b in intervals)
+    assert all(b1 < a2 for (_, b1), (a2, _) in zip(intervals, intervals[1:]))
+    for _ in range(40):
+        value = random.uniform(0.0, 6.0)
+        if any(abs(value - end) < 1e-6 for iv in intervals for end in iv):
+            continue  # at an interval's end the two answers differ by rounding only
+        pose = Pose(value, fixed, rotation) if axis == 0 else Pose(fixed, value, rotation)
+        free = any(a <= value <= b for a, b in intervals)
+        assert free == (not brute_blocked(ROOMS[room_index], placed, spec, pose,
+                                          frozenset(), windows))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 1), st.lists(item, min_size=1, max_size=30), item, st.integers(0, 1),
+       st.booleans())
+def test_the_loop_for_few_hits_and_numpy_for_many_agree(room_index, items, candidate, axis,
+                                                        windows):
+    w, d, front, side, rug, window, x, z, rotation = candidate
+    spec = _spec("new", w, d, front=front, side=side, rug=rug, window=window)
+    related = frozenset({"item1"})
+    answers = []
+    for few in (0, 10_000):  # numpy only, then the loop only
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(layout_module, "_FEW_HITS", few)
+            layout, _ = _layout(room_index, items, windows)
+            fixed = z if axis == 0 else x
+            answers.append((layout.conflicts(spec, Pose(x, z, rotation), related),
+                            layout.free_intervals(spec, rotation, axis, fixed, 0.0, 6.0,
+                                                  related)))
+    assert answers[0] == answers[1]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.floats(-2, 8), st.floats(0, 3)), max_size=40),
+       st.floats(-1, 4), st.floats(0, 6))
+def test_complement_is_the_plain_sweep(intervals, lo, length):
+    forbidden = [(a, a + size) for a, size in intervals if size > 0]
+    hi = lo + length
+    starts = np.array([a for a, _ in forbidden], dtype=float)
+    ends = np.array([b for _, b in forbidden], dtype=float)
+    expected = layout_module._complement_few(forbidden, lo, hi)
+    assert complement(starts, ends, lo, hi) == expected
+    for value in np.linspace(lo, hi, 50):  # and the sweep is right
+        inside = any(a < value < b for a, b in forbidden)
+        if not any(abs(value - e) < 1e-9 for iv in forbidden for e in iv):
+            assert any(a <= value <= b for a, b in expected) == (not inside)
+
+
+def test_a_strip_along_a_crowded_row_finds_every_gap():
+    layout = Layout(box(0, 0, 20, 2))
+    for k in range(40):  # 0.3 m wide items every 0.5 m leave 0.2 m gaps
+        layout.add(_spec(f"b{k}", 0.3, 0.3), Pose(0.25 + 0.5 * k, 1.0, 0))
+    intervals = layout.free_intervals(_spec("new", 0.2, 0.2), 0, 0, 1.0, 0.1, 19.9)
+    assert len(intervals) == 39 > layout_module._FEW_HITS  # numpy's part
+    for k, (a, b) in enumerate(intervals):  # a 0.2 m item fits each gap exactly
+        assert a == pytest.approx(0.5 + 0.5 * k, abs=1e-5) and b == pytest.approx(a, abs=1e-5)
