@@ -21,10 +21,10 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
-import re
 from collections.abc import Iterable, Mapping, Sequence
 from functools import cache
 from importlib.resources import files
+from json.encoder import encode_basestring
 from pathlib import Path
 from typing import Any
 
@@ -60,10 +60,6 @@ FORMAT_VERSION = 1
 """Incremented when a key changes meaning or disappears (additions keep the version)."""
 
 _DIGITS = 6
-
-# An indented JSON list holding only numbers. JSON strings never contain a raw newline,
-# so the pattern only meets structural whitespace.
-_NUMBER_LIST = re.compile(r"\[\n\s*((?:-?[0-9][0-9.eE+-]*,?\s*)+?)\n\s*\]")
 
 
 @cache
@@ -108,7 +104,7 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "seed": int(scene.seed),
         "units": float(scene.units),
         "georeference": (None if scene.georeference is None
-                         else _clean(scene.georeference.to_dict(), "georeference")),
+                         else scene.georeference.to_dict()),
         "frame": {
             "length_unit": "m",
             "up": "+y",
@@ -126,17 +122,15 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "quality": quality_report(list(floors)),
         "nodes": [{**_node(n), **labels[n.path]} for n in nodes],
         "classes": [{"id": c.id, "name": c.name, "group": c.group} for c in class_table()],
-        "diagnostics": [_clean(dataclasses.asdict(d), "diagnostics")
-                        for d in scene.all_diagnostics()],
-        "checks": _clean({name: {**report.to_dict(), "summary": report.summary()}
-                          for name, report in scene.checks.items()}, "checks"),
-        "timings": _clean(dict(scene.timings), "timings"),
-        "difficulty": _clean(scene.difficulty.to_dict(), "difficulty")
-        if scene.difficulty is not None else None,
+        "diagnostics": [dataclasses.asdict(d) for d in scene.all_diagnostics()],
+        "checks": {name: {**report.to_dict(), "summary": report.summary()}
+                   for name, report in scene.checks.items()},
+        "timings": dict(scene.timings),
+        "difficulty": scene.difficulty.to_dict() if scene.difficulty is not None else None,
         "appearance": {"mode": scene.looks().mode, "materials": _materials(nodes)},
         "lights": [_light(light) for light in scene.lights],
     }
-    return _clean(document, "")
+    return _clean(document)
 
 
 def scene_json_text(scene: Scene, nodes: Sequence[SceneNode]) -> str:
@@ -146,9 +140,102 @@ def scene_json_text(scene: Scene, nodes: Sequence[SceneNode]) -> str:
 
 def json_text(document: Any) -> str:
     """JSON text as cga writes it: sorted keys, two-space indent, lists of numbers
-    (points, matrix rows) on one line, trailing newline."""
-    text = json.dumps(document, sort_keys=True, indent=2, ensure_ascii=False, allow_nan=False)
-    return _NUMBER_LIST.sub(lambda m: "[" + " ".join(m.group(1).split()) + "]", text) + "\n"
+    (points, matrix rows) on one line, trailing newline.
+
+    The text is what ``json.dumps(document, sort_keys=True, indent=2,
+    ensure_ascii=False, allow_nan=False)`` gives with every list of only numbers joined
+    onto one line (``[1.0, 2.0]``), written in one walk: the standard library's
+    encoder runs in pure Python as soon as it indents, and a scene holds tens of
+    thousands of values.
+
+    Raises
+    ------
+    ValueError
+        A float is NaN or infinite.
+    TypeError
+        A value is not JSON data (dict with string keys, list, tuple, string, number,
+        bool, None).
+    """
+    parts: list[str] = []
+    _write(document, "\n", parts)
+    parts.append("\n")
+    return "".join(parts)
+
+
+def _write(value: Any, newline: str, parts: list[str]) -> None:
+    """Append the JSON text of ``value`` to ``parts``; ``newline`` is a line break and
+    the indent of the line ``value`` starts on."""
+    kind = type(value)  # exact types first: nearly every value is one
+    if kind is dict:
+        _write_dict(value, newline, parts)
+    elif kind is list or kind is tuple:
+        _write_list(value, newline, parts)
+    elif kind is str:
+        parts.append(_string(value))
+    elif isinstance(value, dict):
+        _write_dict(value, newline, parts)
+    elif isinstance(value, (list, tuple)):
+        _write_list(value, newline, parts)
+    elif isinstance(value, str):
+        parts.append(_string(value))
+    else:
+        parts.append(_scalar(value))
+
+
+def _write_dict(value: dict[Any, Any], newline: str, parts: list[str]) -> None:
+    if not value:
+        parts.append("{}")
+        return
+    inner = newline + "  "
+    lead = "{" + inner
+    for key in sorted(value):
+        if not isinstance(key, str):
+            raise TypeError(f"keys must be str, not {type(key).__name__}")
+        parts.append(lead + _string(key) + ": ")
+        _write(value[key], inner, parts)
+        lead = "," + inner
+    parts.append(newline + "}")
+
+
+def _write_list(value: Sequence[Any], newline: str, parts: list[str]) -> None:
+    if not value:
+        parts.append("[]")
+    elif all(_is_number(v) for v in value):  # points, matrix rows: one line
+        parts.append("[" + ", ".join(map(_scalar, value)) + "]")
+    else:
+        inner = newline + "  "
+        lead = "[" + inner
+        for item in value:
+            parts.append(lead)
+            _write(item, inner, parts)
+            lead = "," + inner
+        parts.append(newline + "]")
+
+
+def _is_number(value: Any) -> bool:
+    """Whether JSON writes ``value`` as a number (bools are ``true`` and ``false``)."""
+    kind = type(value)
+    return kind is float or kind is int or (
+        isinstance(value, (int, float)) and not isinstance(value, bool))
+
+
+_string = encode_basestring
+"""A JSON string literal, as :mod:`json` writes it with ``ensure_ascii=False``."""
+
+
+def _scalar(value: Any) -> str:
+    """A JSON number or literal, as :mod:`json` writes it."""
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ValueError(f"Out of range float values are not JSON compliant: {value!r}")
+        return float.__repr__(value)
+    if value is None:
+        return "null"
+    if value is True or value is False:
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return int.__repr__(value)
+    raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
 
 
 def export_scene_json(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
@@ -403,27 +490,83 @@ def _polygon(geometry: Polygon | MultiPolygon) -> dict[str, Any]:
     }
 
 
-def _clean(value: Any, where: str) -> Any:
-    """Convert to JSON-ready types, rounding floats to 1e-6 (``-0.0`` → ``0.0``)."""
-    if isinstance(value, bool) or value is None or isinstance(value, str):
+class _Unfit(Exception):
+    """A value :func:`_clean` cannot turn into JSON; ``path`` gathers the keys and
+    indices leading to it, innermost first, as the error travels out."""
+
+    def __init__(self, problem: str):
+        super().__init__(problem)
+        self.problem = problem
+        self.path: list[str] = []
+
+    def where(self) -> str:
+        return "".join(reversed(self.path)).removeprefix(".") or "value"
+
+
+def _clean(document: Any) -> Any:
+    """Convert to JSON-ready types, rounding floats to 1e-6 (``-0.0`` → ``0.0``).
+
+    Raises
+    ------
+    ExportError
+        A value is not finite or has no JSON form; the message names where it sits
+        (``checks.physics.max_penetration``).
+    """
+    try:
+        return _cleaned(document)
+    except _Unfit as unfit:
+        raise ExportError(f"scene JSON: {unfit.where()} {unfit.problem}") from None
+
+
+def _cleaned(value: Any) -> Any:
+    kind = type(value)
+    if kind is float:  # the common cases first, by exact type
+        if not math.isfinite(value):
+            raise _Unfit(f"is {value}, which JSON cannot hold; the stage that produced it "
+                         f"must report a finite number")
+        return round(value, _DIGITS) + 0.0
+    if kind is str or kind is int or kind is bool or value is None:
+        return value
+    if kind is dict:
+        return _cleaned_dict(value)
+    if kind is list or kind is tuple:
+        return _cleaned_list(value)
+    if isinstance(value, (bool, str)):
         return value
     if isinstance(value, (int, np.integer)):
         return int(value)
     if isinstance(value, (float, np.floating)):
-        number = float(value)
-        if not math.isfinite(number):
-            raise ExportError(f"scene JSON: {where or 'value'} is {number}, which JSON cannot "
-                              f"hold; the stage that produced it must report a finite number")
-        return round(number, _DIGITS) + 0.0
+        return _cleaned(float(value))
     if isinstance(value, np.ndarray):
-        return _clean(value.tolist(), where)
+        return _cleaned_list(value.tolist())
     if isinstance(value, Path):
         return value.as_posix()
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return _clean(dataclasses.asdict(value), where)
+        return _cleaned_dict(dataclasses.asdict(value))
     if isinstance(value, Mapping):
-        return {str(k): _clean(v, f"{where}.{k}" if where else str(k)) for k, v in value.items()}
+        return _cleaned_dict(value)
     if isinstance(value, (list, tuple)):
-        return [_clean(v, f"{where}[{i}]") for i, v in enumerate(value)]
-    raise ExportError(f"scene JSON: {where or 'value'} has type {type(value).__name__}, "
-                      f"which has no JSON form")
+        return _cleaned_list(value)
+    raise _Unfit(f"has type {type(value).__name__}, which has no JSON form")
+
+
+def _cleaned_dict(values: Mapping[Any, Any]) -> dict[str, Any]:
+    out = {}
+    for key, item in values.items():
+        try:
+            out[str(key)] = _cleaned(item)
+        except _Unfit as unfit:
+            unfit.path.append(f".{key}")
+            raise
+    return out
+
+
+def _cleaned_list(values: Sequence[Any]) -> list[Any]:
+    out = []
+    for index, item in enumerate(values):
+        try:
+            out.append(_cleaned(item))
+        except _Unfit as unfit:
+            unfit.path.append(f"[{index}]")
+            raise
+    return out

@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import re
 
 import jsonschema
+import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 import cga
 from cga.errors import ExportError
-from cga.export.scene_json import export_scene_json, load_schema, scene_json_text
+from cga.export.scene_json import export_scene_json, json_text, load_schema, scene_json_text
 from reports import FixedReport
 
 
@@ -127,4 +130,54 @@ def test_nan_in_checks_is_an_export_error(small_scene):
     scene, nodes = small_scene
     bad = dataclasses.replace(scene, checks={"physics": FixedReport(details={"max_penetration": float("nan")})})
     with pytest.raises(ExportError, match=r"checks\.physics\.max_penetration"):
+        scene_json_text(bad, nodes)
+
+
+def _stdlib_text(document):
+    """The text the way the standard library writes it: indented, then every list of
+    only numbers joined onto one line."""
+    text = json.dumps(document, sort_keys=True, indent=2, ensure_ascii=False, allow_nan=False)
+    # each number an atomic group: a long number followed by a string would otherwise
+    # be split every which way before the match fails
+    one_line = re.compile(r"\[\n\s*((?:(?>-?[0-9][0-9.eE+-]*),?\s*)+?)\n\s*\]")
+    return one_line.sub(lambda m: "[" + " ".join(m.group(1).split()) + "]", text) + "\n"
+
+
+_SCALARS = (st.none() | st.booleans() | st.integers(-10**20, 10**20)
+            | st.floats(allow_nan=False, allow_infinity=False)
+            | st.text(st.characters(codec="utf-8"), max_size=8))
+_DOCUMENTS = st.recursive(_SCALARS, lambda inner: (
+    st.lists(inner, max_size=5) | st.lists(inner, max_size=3).map(tuple)
+    | st.lists(st.integers(-5, 5) | st.floats(-1e9, 1e9), min_size=1, max_size=4)
+    | st.dictionaries(st.text(max_size=5), inner, max_size=5)), max_leaves=40)
+
+
+@settings(max_examples=200, deadline=None)
+@given(_DOCUMENTS)
+def test_json_text_is_the_standard_librarys_text(document):
+    assert json_text(document) == _stdlib_text(document)
+
+
+def test_json_text_of_a_scene_is_the_standard_librarys_text(small_scene):
+    from cga.export.scene_json import scene_as_dict
+
+    document = scene_as_dict(*small_scene)
+    assert json_text(document) == _stdlib_text(document)
+    # subclasses of the JSON types (numpy floats) are written as their base type
+    assert json_text({"p": [np.float64(0.5), 2], "q": [True, 1]}) == _stdlib_text(
+        {"p": [np.float64(0.5), 2], "q": [True, 1]})
+
+
+@pytest.mark.parametrize("bad, error", [(float("nan"), ValueError), (float("inf"), ValueError),
+                                        ({1: 2}, TypeError), (object(), TypeError)])
+def test_json_text_refuses_what_json_cannot_hold(bad, error):
+    with pytest.raises(error):
+        json_text({"a": [bad]})
+
+
+def test_unfit_value_deep_in_a_list_is_named_by_its_path(small_scene):
+    scene, nodes = small_scene
+    bad = dataclasses.replace(scene, checks={"physics": FixedReport(
+        details={"items": [{"ok": 1.0}, {"ok": float("inf")}], "when": object()})})
+    with pytest.raises(ExportError, match=r"checks\.physics\.(items\[1\]\.ok|when) "):
         scene_json_text(bad, nodes)
