@@ -160,8 +160,12 @@ class Passage:
         return state
 
     def _derive(self, key: frozenset[Box]) -> _State:
+        # the kept sets one item smaller, by the item they lack (asking the cache for
+        # ``key`` less each item in turn would build n sets of n items)
+        smaller_by = {next(iter(key - k)): state for k, state in self._states.items()
+                      if len(k) + 1 == len(key) and k < key}
         for footprint in key:
-            smaller = self._states.get(key - {footprint})
+            smaller = smaller_by.get(footprint)
             if smaller is not None:
                 grown = self._grown(footprint)
                 if not smaller.floor.intersects(grown):
