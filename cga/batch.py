@@ -588,8 +588,11 @@ def _run_locked(run: _Run, seeds: range,
 def _warm_up(physics: bool, out_dir: str) -> None:
     """Import what a build needs before a worker takes its first seed (a second or two
     that would otherwise count against the first build's time limit), and check that
-    the worker sees the output folder (a Ray worker on another node may not)."""
+    the worker sees the output folder (a Ray worker on another node may not); then set
+    the garbage collector for building (:mod:`cga.collector`)."""
     import importlib
+
+    from .collector import tune_for_building
 
     if not os.path.isdir(out_dir):
         raise UsageError(f"the output folder {out_dir} does not exist on {socket.gethostname()}")
@@ -598,3 +601,4 @@ def _warm_up(physics: bool, out_dir: str) -> None:
         modules += ["cga.checks.physics", "cga.checks.navigability"]
     for name in modules:
         importlib.import_module(name)
+    tune_for_building()

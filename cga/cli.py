@@ -461,8 +461,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv:
         Arguments without the program name (default: ``sys.argv[1:]``).
     """
+    from .collector import tune_for_building
     from .interrupts import Terminated, handle_termination
 
+    tune_for_building()
     arguments = list(sys.argv[1:] if argv is None else argv)
     if arguments[:2] == ["batch", "merge"]:  # a command of batch, not a grammar named merge
         args = _merge_parser().parse_args(arguments[2:])
