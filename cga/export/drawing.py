@@ -327,6 +327,7 @@ def _reduce_rgb(image: Image.Image, factor: int) -> Image.Image:
     supersampled canvas and a weighting by alpha); its core box average treats each band
     on its own, so averaging first and dropping alpha on the small image gives the bytes
     of ``image.convert("RGB").reduce(factor)`` without a pass over the large canvas.
+    The core call is the one ``Image.reduce`` makes for every mode without alpha.
     """
     averaged = image._new(image.im.reduce((factor, factor), (0, 0, *image.size)))
     return averaged.convert("RGB")
