@@ -14,9 +14,12 @@ with openings becomes boxes), and kept as one concave triangle mesh when it does
 into convex pieces. Boxes rather than triangle meshes, because Bullet's contacts between
 a convex part and the long thin triangles of a slab triangulated around T-junctions push
 sideways: standing on the slab as one mesh, a washbasin tipped over and wardrobes walked
-2–3 cm in 5 of 200 house seeds. Each solid item is one rigid body whose collision shape
-is a compound of its convex parts (V-HACD pieces for models that are not made of convex
-parts, see :mod:`cga.checks.vhacd`), with the item's mass at the parts' centroid. Static
+2–3 cm in 5 of 200 house seeds. Each solid item is one rigid body (maximal
+coordinates, like the static pieces: a plain rigid body's contacts cost less to solve
+than those of a one-link multibody, pybullet's default) whose collision shape is a
+compound of its convex parts (V-HACD pieces for models that are not made of convex
+parts, see :mod:`cga.checks.vhacd`), with the item's mass at the parts' centroid,
+measured once per model (:mod:`cga.checks._item_solids`). Static
 furniture (rugs, which may overlap anything, and door and window details, which sit in
 their openings) is not simulated.
 
