@@ -52,6 +52,7 @@ import numpy as np
 from cga.collision import BULLET_MARGIN, CONTACT_SHRINK
 from cga.scene import Scene, SceneNode
 
+from ._boxes import box_pieces
 from ._bullet import direct_client
 from ._item_solids import ItemShape, item_shape, item_solid
 from ._solids import convex_pieces
@@ -370,8 +371,11 @@ class _World:
 
     def add_static(self, node: SceneNode) -> None:
         """Static bodies for a structure node: its convex pieces when it cuts into them
-        (:func:`convex_pieces`), else the node as one concave triangle mesh."""
-        pieces = convex_pieces(node.mesh)
+        (:func:`box_pieces` for a rectilinear solid, else :func:`convex_pieces`), else
+        the node as one concave triangle mesh."""
+        pieces = box_pieces(node.mesh)
+        if pieces is None:
+            pieces = convex_pieces(node.mesh)
         if pieces is None:
             mesh = node.mesh
             shape = self.pb.createCollisionShape(
