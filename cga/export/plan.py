@@ -313,12 +313,18 @@ def _along(wall: Wall, point: Sequence[float]) -> float:
     return float(np.dot(np.subtract(point, wall.start), wall.direction))
 
 
-def _rect(wall: Wall, s0: float, s1: float, lo: float, hi: float) -> Polygon:
-    """The part of the wall between ``s0`` and ``s1`` metres along it and offsets ``lo``
-    and ``hi`` across it (along :attr:`Wall.normal`)."""
+def _corners(wall: Wall, s0: float, s1: float, lo: float, hi: float) -> list[tuple[float, float]]:
+    """The corners of the part of the wall between ``s0`` and ``s1`` metres along it and
+    offsets ``lo`` and ``hi`` across it (along :attr:`Wall.normal`), in that order:
+    ``(s0, lo)``, ``(s1, lo)``, ``(s1, hi)``, ``(s0, hi)``."""
     start, u, n = np.asarray(wall.start), wall.direction, wall.normal
-    corners = [start + u * s + n * o for s, o in ((s0, lo), (s1, lo), (s1, hi), (s0, hi))]
-    return Polygon(corners)
+    return [(float(x), float(z)) for x, z in (start + u * s + n * o for s, o in
+                                              ((s0, lo), (s1, lo), (s1, hi), (s0, hi)))]
+
+
+def _rect(wall: Wall, s0: float, s1: float, lo: float, hi: float) -> Polygon:
+    """That part of the wall as a polygon (:func:`_corners`)."""
+    return Polygon(_corners(wall, s0, s1, lo, hi))
 
 
 def _draw_walls(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
@@ -342,12 +348,11 @@ def _draw_windows(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
         lo, hi = wall.band()
         s = _along(wall, window.position)
         s0, s1 = s - window.width / 2, s + window.width / 2
-        gap = _rect(wall, s0, s1, lo, hi)
-        drawing.add("windows", Area((paper.ring(gap.exterior.coords[:-1]),), _WINDOW_GAP,
-                                    css_class="window"))
+        gap = _corners(wall, s0, s1, lo, hi)
+        drawing.add("windows", Area((paper.ring(gap),), _WINDOW_GAP, css_class="window"))
         for fraction in (0.38, 0.62):
             o = lo + (hi - lo) * fraction
-            line = _rect(wall, s0, s1, o, o).exterior.coords[:2]
+            line = _corners(wall, s0, s1, o, o)[:2]
             drawing.add("windows", Polyline(paper.ring(line), _GLASS, css_class="window-glass"))
 
 
