@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Literal
 
 import numpy as np
+import shapely
 from shapely import affinity
 from shapely.geometry import LineString, MultiPolygon, Point as ShapelyPoint, Polygon
 from shapely.geometry.base import BaseGeometry
@@ -192,10 +193,10 @@ def _hatch(drawing: Drawing, paper: _Paper, region: Polygon, layer: str = "rooms
     spacing = max(_HATCH_SPACING, _HATCH_MIN_PX / paper.scale)  # small plans: fewer lines
     span = (max_x - min_x) + (max_z - min_z)
     count = int(span / spacing) + 1
-    for k in range(count + 1):
-        c = min_x + min_z + k * spacing  # the line x + z = c
-        line = LineString([(c - min_z + 1, min_z - 1), (c - max_z - 1, max_z + 1)])
-        piece = line.intersection(region)
+    offsets = (min_x + min_z + k * spacing for k in range(count + 1))  # lines x + z = c
+    lines = shapely.linestrings([[(c - min_z + 1, min_z - 1), (c - max_z - 1, max_z + 1)]
+                                 for c in offsets])
+    for piece in shapely.intersection(lines, region):  # all lines in one call
         for part in getattr(piece, "geoms", [piece]):
             if isinstance(part, LineString) and not part.is_empty:
                 drawing.add(layer, Polyline(tuple(paper.point(x, z) for x, z in part.coords),
