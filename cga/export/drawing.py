@@ -17,7 +17,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cache, lru_cache
-from typing import Literal, Union
+from typing import Any, Literal, Union
 from xml.sax.saxutils import escape, quoteattr
 
 from PIL import Image, ImageDraw, ImageFont
@@ -327,10 +327,20 @@ def _reduce_rgb(image: Image.Image, factor: int) -> Image.Image:
     supersampled canvas and a weighting by alpha); its core box average treats each band
     on its own, so averaging first and dropping alpha on the small image gives the bytes
     of ``image.convert("RGB").reduce(factor)`` without a pass over the large canvas.
-    The core call is the one ``Image.reduce`` makes for every mode without alpha.
+    The core call is the one ``Image.reduce`` makes for every mode without alpha; a
+    Pillow without it (the core is not public API) gets the public, slower route.
     """
-    averaged = image._new(image.im.reduce((factor, factor), (0, 0, *image.size)))
-    return averaged.convert("RGB")
+    core = _core_reduce(image)
+    if core is None:
+        return image.convert("RGB").reduce(factor)
+    return image._new(core((factor, factor), (0, 0, *image.size))).convert("RGB")
+
+
+def _core_reduce(image: Image.Image) -> Any:
+    """Pillow's core box average of ``image`` (what ``Image.reduce`` calls), or None."""
+    if not hasattr(image, "_new"):
+        return None
+    return getattr(getattr(image, "im", None), "reduce", None)
 
 
 def render_png(drawing: Drawing, *, supersample: int = 3) -> bytes:

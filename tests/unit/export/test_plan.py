@@ -158,3 +158,13 @@ def test_colour_averaged_before_alpha_is_dropped_equals_dropped_then_averaged():
         page = Image.fromarray(rng.integers(0, 256, (height, width, 4), dtype=np.uint8), "RGBA")
         expected = page.convert("RGB").reduce(3)
         assert _reduce_rgb(page, 3).tobytes() == expected.tobytes()
+
+
+
+def test_a_pillow_without_the_core_reduce_gets_the_same_bytes(monkeypatch):
+    from cga.export import drawing
+
+    rng = np.random.default_rng(8)
+    page = Image.fromarray(rng.integers(0, 256, (23, 31, 4), dtype=np.uint8), "RGBA")
+    monkeypatch.setattr(drawing, "_core_reduce", lambda image: None)
+    assert drawing._reduce_rgb(page, 3).tobytes() == page.convert("RGB").reduce(3).tobytes()
