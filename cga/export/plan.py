@@ -248,9 +248,11 @@ def _draw_item_name(drawing: Drawing, paper: _Paper, item: FurnitureItem,
 def _erode(region: BaseGeometry, half_w: float, half_h: float) -> BaseGeometry:
     """Where the centre of a ``2·half_w`` × ``2·half_h`` axis-aligned box can go so that
     the box stays inside ``region`` (erosion by a rectangle: squash x until the box is
-    a square, erode with a mitred buffer, stretch back)."""
+    a square, erode with a mitred buffer, stretch back). Vertices a round-off apart
+    (a room cut at 13.8 meeting a wall at 13.799999999999999) are merged first: GEOS
+    divides by their zero-length edge when it mitres a corner there."""
     k = half_h / half_w
-    squashed = affinity.scale(region, xfact=k, yfact=1.0, origin=(0, 0))
+    squashed = affinity.scale(region.simplify(1e-9), xfact=k, yfact=1.0, origin=(0, 0))
     eroded = squashed.buffer(-half_h, join_style="mitre")
     return affinity.scale(eroded, xfact=1 / k, yfact=1.0, origin=(0, 0))
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import re
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -168,3 +169,22 @@ def test_a_pillow_without_the_core_reduce_gets_the_same_bytes(monkeypatch):
     page = Image.fromarray(rng.integers(0, 256, (23, 31, 4), dtype=np.uint8), "RGBA")
     monkeypatch.setattr(drawing, "_core_reduce", lambda image: None)
     assert drawing._reduce_rgb(page, 3).tobytes() == page.convert("RGB").reduce(3).tobytes()
+
+
+
+def test_a_room_with_vertices_a_round_off_apart_erodes_without_a_warning():
+    import warnings
+
+    import shapely.wkt
+
+    from cga.export.plan import _erode
+
+    # free floor of a 20-storey house's room: a cut at 13.8 meets a wall at
+    # 13.799999999999999, and door swings round its corners
+    text = (Path(__file__).resolve().parents[2] / "data" / "plan"
+            / "room_with_round_off_vertices.wkt").read_text()
+    region = shapely.wkt.loads(text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fit = _erode(region, 0.5025685864825581, 0.19372093023255813)
+    assert fit.area > 0 and region.buffer(1e-6).contains(fit)
