@@ -49,7 +49,11 @@ def _coarsen(mask: np.ndarray, factor: int, how: Literal["any", "all"]) -> np.nd
 
 def _grid_graph(drivable: np.ndarray, cell: float) -> tuple[csr_matrix, np.ndarray]:
     """CSR graph of the 8-connected drivable cells (edge weights in metres) and the
-    graph index of every drivable cell (-1 elsewhere)."""
+    graph index of every drivable cell (-1 elsewhere).
+
+    Every edge is stored both ways, so a search runs it with ``directed=True``: scipy's
+    undirected search would transpose the matrix on every call, and the distances are
+    the same (each is the least of its settled neighbours' sums, whatever the order)."""
     index = np.full(drivable.shape, -1, dtype=np.int64)
     flat = np.flatnonzero(drivable)
     index.ravel()[flat] = np.arange(len(flat))
@@ -62,7 +66,9 @@ def _grid_graph(drivable: np.ndarray, cell: float) -> tuple[csr_matrix, np.ndarr
         u.append(a[both])
         v.append(b[both])
         w.append(np.full(int(both.sum()), cell * math.hypot(dr, dc)))
-    graph = coo_matrix((np.concatenate(w), (np.concatenate(u), np.concatenate(v))),
+    tails, heads, weights = np.concatenate(u), np.concatenate(v), np.concatenate(w)
+    graph = coo_matrix((np.concatenate([weights, weights]),
+                        (np.concatenate([tails, heads]), np.concatenate([heads, tails]))),
                        shape=(len(flat), len(flat))).tocsr()
     return graph, index
 
@@ -116,6 +122,7 @@ def exploration_path(free: np.ndarray, blocked: np.ndarray, drivable: np.ndarray
     position = (start[0] // factor, start[1] // factor)
     drive[position] = True
     graph, index = _grid_graph(drive, cell)
+    cells = np.flatnonzero(drive)  # graph index -> flat cell
     offsets = _ray_offsets(int(sensor_range / cell))
     rows, cols = target.shape
     seen = np.zeros_like(target)
@@ -142,12 +149,12 @@ def exploration_path(free: np.ndarray, blocked: np.ndarray, drivable: np.ndarray
         candidates = index[frontier]
         if candidates.size == 0:
             break
-        distances = dijkstra(graph, directed=False, indices=int(index[position]))
+        distances = dijkstra(graph, directed=True, indices=int(index[position]))
         reachable = candidates[np.isfinite(distances[candidates])]
         if reachable.size == 0:
             break
         goal = int(reachable[np.argmin(distances[reachable])])
         driven += float(distances[goal])
-        position = tuple(int(v) for v in np.argwhere(index == goal)[0])  # type: ignore[assignment]
+        position = divmod(int(cells[goal]), cols)
         sense(position)
     return driven

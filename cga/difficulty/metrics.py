@@ -200,7 +200,7 @@ def _geodesic(reached: np.ndarray, start: tuple[int, int], resolution: float) ->
     from .exploration import _grid_graph
 
     graph, index = _grid_graph(reached, resolution)
-    distances = dijkstra(graph, directed=False, indices=int(index[start]))
+    distances = dijkstra(graph, directed=True, indices=int(index[start]))
     out = np.full(reached.shape, np.inf)
     out[reached] = distances[index[reached]]
     return out
