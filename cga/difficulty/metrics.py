@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
-from cga.checks._distance import distance_to_false, squared_distance_to_false, squared_reach
+from cga.checks._distance import distance_to_false, squared_reach
 from cga.model import OUTSIDE, FloorPlan
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -219,10 +219,10 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
 
     A disc of radius ``r`` centred on a cell whose clearance is at least ``r`` is free, so
     a cell lies in a free disc of radius ``r`` exactly when it is within ``r`` of such a
-    centre: one distance transform per radius (Hildebrand and Rüegsegger 1997 define the
-    same thickness), each on the bounding box of the centres grown by ``r`` (no cell
-    farther out is within ``r`` of a centre). Cells in no free disc (the obstacles)
-    get 0.
+    centre: one dilation of the centres by the disc per radius (Hildebrand and
+    Rüegsegger 1997 define the same thickness), each on the bounding box of the centres
+    grown by ``r`` (no cell farther out is within ``r`` of a centre). Cells in no free
+    disc (the obstacles) get 0.
     """
     width = np.zeros(clearance.shape)
     row_best, col_best = clearance.max(axis=1), clearance.max(axis=0)
@@ -233,10 +233,37 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
         grow = math.ceil(radius / resolution) + 1
         box = (slice(max(0, int(rows[0]) - grow), int(rows[-1]) + grow + 1),
                slice(max(0, int(cols[0]) - grow), int(cols[-1]) + grow + 1))
-        near = (squared_distance_to_false(clearance[box] < radius)
-                <= squared_reach(radius, resolution))
+        near = disc_dilation(~(clearance[box] < radius), squared_reach(radius, resolution))
         width[box][near] = 2 * radius
     return width
+
+
+def disc_dilation(mask: np.ndarray, reach: int) -> np.ndarray:
+    """``bool[rows, cols]``: the cells whose squared distance (cells²) to a true cell of
+    ``mask`` is at most ``reach`` (none when ``reach`` < 0), exactly
+    ``squared_distance_to_false(~mask) <= reach``.
+
+    The disc is the union of its rows, so the dilation is: ``mask`` grown sideways by
+    each row's half width (grown one cell at a time, each width kept), then those
+    stacked up and down: about ``3·√reach`` ors of the whole grid, where a distance
+    transform per radius (or a dilation by the disc's ``≈3·reach`` cells) costs more.
+    """
+    if reach < 0:
+        return np.zeros_like(mask, dtype=bool)
+    top = math.isqrt(reach)
+    half = [math.isqrt(reach - dy * dy) for dy in range(top + 1)]  # half[0] is the widest
+    spans, grown = {0: mask.copy()}, mask.copy()
+    for w in range(1, half[0] + 1):
+        grown[:, w:] |= mask[:, :-w]
+        grown[:, :-w] |= mask[:, w:]
+        if w in half:
+            spans[w] = grown.copy()
+    out = spans[half[0]].copy()
+    for dy in range(1, top + 1):
+        row = spans[half[dy]]
+        out[dy:] |= row[:-dy]
+        out[:-dy] |= row[dy:]
+    return out
 
 
 def _radii() -> list[float]:

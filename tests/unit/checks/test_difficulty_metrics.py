@@ -13,7 +13,8 @@ from cga.checks import check_navigability
 from cga.difficulty import measure_floor
 from cga.difficulty.exploration import exploration_path
 from cga.difficulty.metrics import (MAX_WIDTH, WIDTH_STEP, corridor_length, cycle_rank,
-                                    dead_ends, doors_per_room, items_per_m2, local_width)
+                                    dead_ends, disc_dilation, doors_per_room, items_per_m2,
+                                    local_width)
 from cga.model import FurnitureItem
 
 T = 0.2  # FloorSettings' default wall thickness
@@ -185,7 +186,7 @@ def _local_width_by_definition(clearance, resolution):
 @given(seed=st.integers(0, 2**32 - 1), rows=st.integers(3, 90), cols=st.integers(3, 90),
        boxes=st.integers(0, 6), resolution=st.sampled_from([0.05, 0.1, 0.04]))
 def test_local_width_is_the_per_radius_definition(seed, rows, cols, boxes, resolution):
-    """local_width (distance transforms cropped to each radius's centres) gives the very
+    """local_width (disc dilations cropped to each radius's centres) gives the very
     numbers of the definition on rooms with random furniture."""
     from scipy import ndimage
 
@@ -198,3 +199,21 @@ def test_local_width_is_the_per_radius_definition(seed, rows, cols, boxes, resol
     clearance = ndimage.distance_transform_edt(~blocked) * resolution - resolution / 2
     assert np.array_equal(local_width(clearance, resolution),
                           _local_width_by_definition(clearance, resolution))
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 40), cols=st.integers(1, 40),
+       density=st.sampled_from([0.002, 0.02, 0.3]), reach=st.integers(-1, 2000))
+def test_disc_dilation_is_the_distance_transform_within_reach(seed, rows, cols, density,
+                                                              reach):
+    """disc_dilation marks exactly the cells whose squared distance (scipy's distance
+    transform, squared and rounded) to a true cell is at most ``reach``, discs wider
+    than the grid and empty masks included."""
+    from scipy import ndimage
+
+    mask = np.random.default_rng(seed).random((rows, cols)) < density
+    if mask.any():
+        expected = np.rint(np.square(ndimage.distance_transform_edt(~mask))) <= reach
+    else:
+        expected = np.zeros_like(mask)
+    assert np.array_equal(disc_dilation(mask, reach), expected)
