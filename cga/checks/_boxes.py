@@ -76,9 +76,10 @@ def box_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
         return None
     sizes = np.meshgrid(*(np.diff(g) for g in grid), indexing="ij")
     volumes = sizes[0] * sizes[1] * sizes[2]
-    if _Block(cells, grid, volumes).convex:
+    whole = _Block(cells, grid, volumes)
+    if whole.convex:
         return [mesh]
-    pieces = [_Block(cells, grid, volumes)]
+    pieces = [whole]
     for axis in (0, 2, 1):
         for index in range(1, len(grid[axis]) - 1):
             cut: list[_Block] = []
@@ -108,8 +109,9 @@ class _Block:
 
     def __init__(self, cells: np.ndarray, grid: list[np.ndarray], volumes: np.ndarray):
         self.cells, self.grid, self.volumes = cells, grid, volumes
-        spans = [np.flatnonzero(cells.any(axis=tuple(k for k in range(3) if k != axis)))
-                 for axis in range(3)]
+        plan: np.ndarray = cells.any(axis=1)  # which (x, z) columns hold a cell
+        spans = (np.flatnonzero(plan.any(axis=1)), np.flatnonzero(cells.any(axis=(0, 2))),
+                 np.flatnonzero(plan.any(axis=0)))
         self.lo = tuple(int(s[0]) for s in spans)
         self.hi = tuple(int(s[-1]) for s in spans)
         self._convex: bool | None = None
