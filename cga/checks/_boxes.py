@@ -109,7 +109,7 @@ class _Block:
 
     def __init__(self, cells: np.ndarray, grid: list[np.ndarray], volumes: np.ndarray):
         self.cells, self.grid, self.volumes = cells, grid, volumes
-        plan: np.ndarray = cells.any(axis=1)  # which (x, z) columns hold a cell
+        plan = np.any(cells, axis=1)  # which (x, z) columns hold a cell
         spans = (np.flatnonzero(plan.any(axis=1)), np.flatnonzero(cells.any(axis=(0, 2))),
                  np.flatnonzero(plan.any(axis=0)))
         self.lo = tuple(int(s[0]) for s in spans)
