@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-__all__ = ["distance_to_false", "squared_distance_to_false", "squared_reach"]
+__all__ = ["disc_dilation", "distance_to_false", "squared_distance_to_false", "squared_reach"]
 
 _EXACT_DIAGONAL_SQUARED = 2**24
 """Squared distances (cells²) below this are whole numbers in float32."""
@@ -58,3 +58,32 @@ def squared_reach(radius: float, resolution: float) -> int:
     while d2 > 0 and math.sqrt(d2) * resolution > radius:
         d2 -= 1
     return d2
+
+
+def disc_dilation(mask: np.ndarray, reach: int) -> np.ndarray:
+    """``bool[rows, cols]``: the cells whose squared distance (cells²) to a true cell of
+    ``mask`` is at most ``reach`` (none when ``reach`` < 0), exactly
+    ``squared_distance_to_false(~mask) <= reach``.
+
+    The disc is the union of its rows, so the dilation is: ``mask`` grown sideways by
+    each row's half width (grown one cell at a time, each width kept), then those
+    stacked up and down: about ``3·√reach`` ors of the whole grid, where a distance
+    transform (or a dilation by the disc's ``≈3·reach`` cells) costs more when only the
+    cells within one reach are wanted.
+    """
+    if reach < 0:
+        return np.zeros_like(mask, dtype=bool)
+    top = math.isqrt(reach)
+    half = [math.isqrt(reach - dy * dy) for dy in range(top + 1)]  # half[0] is the widest
+    spans, grown = {0: mask.copy()}, mask.copy()
+    for w in range(1, half[0] + 1):
+        grown[:, w:] |= mask[:, :-w]
+        grown[:, :-w] |= mask[:, w:]
+        if w in half:
+            spans[w] = grown.copy()
+    out = spans[half[0]].copy()
+    for dy in range(1, top + 1):
+        row = spans[half[dy]]
+        out[dy:] |= row[:-dy]
+        out[:-dy] |= row[dy:]
+    return out

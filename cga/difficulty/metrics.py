@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
-from cga.checks._distance import distance_to_false, squared_reach
+from cga.checks._distance import disc_dilation, distance_to_false, squared_reach
 from cga.model import OUTSIDE, FloorPlan
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -236,34 +236,6 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
         near = disc_dilation(~(clearance[box] < radius), squared_reach(radius, resolution))
         width[box][near] = 2 * radius
     return width
-
-
-def disc_dilation(mask: np.ndarray, reach: int) -> np.ndarray:
-    """``bool[rows, cols]``: the cells whose squared distance (cells²) to a true cell of
-    ``mask`` is at most ``reach`` (none when ``reach`` < 0), exactly
-    ``squared_distance_to_false(~mask) <= reach``.
-
-    The disc is the union of its rows, so the dilation is: ``mask`` grown sideways by
-    each row's half width (grown one cell at a time, each width kept), then those
-    stacked up and down: about ``3·√reach`` ors of the whole grid, where a distance
-    transform per radius (or a dilation by the disc's ``≈3·reach`` cells) costs more.
-    """
-    if reach < 0:
-        return np.zeros_like(mask, dtype=bool)
-    top = math.isqrt(reach)
-    half = [math.isqrt(reach - dy * dy) for dy in range(top + 1)]  # half[0] is the widest
-    spans, grown = {0: mask.copy()}, mask.copy()
-    for w in range(1, half[0] + 1):
-        grown[:, w:] |= mask[:, :-w]
-        grown[:, :-w] |= mask[:, w:]
-        if w in half:
-            spans[w] = grown.copy()
-    out = spans[half[0]].copy()
-    for dy in range(1, top + 1):
-        row = spans[half[dy]]
-        out[dy:] |= row[:-dy]
-        out[:-dy] |= row[dy:]
-    return out
 
 
 def _radii() -> list[float]:

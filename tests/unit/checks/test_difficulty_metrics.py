@@ -13,8 +13,7 @@ from cga.checks import check_navigability
 from cga.difficulty import measure_floor
 from cga.difficulty.exploration import exploration_path
 from cga.difficulty.metrics import (MAX_WIDTH, WIDTH_STEP, corridor_length, cycle_rank,
-                                    dead_ends, disc_dilation, doors_per_room, items_per_m2,
-                                    local_width)
+                                    dead_ends, doors_per_room, items_per_m2, local_width)
 from cga.model import FurnitureItem
 
 T = 0.2  # FloorSettings' default wall thickness
@@ -201,19 +200,22 @@ def test_local_width_is_the_per_radius_definition(seed, rows, cols, boxes, resol
                           _local_width_by_definition(clearance, resolution))
 
 
-@settings(max_examples=40, deadline=None)
-@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 40), cols=st.integers(1, 40),
-       density=st.sampled_from([0.002, 0.02, 0.3]), reach=st.integers(-1, 2000))
-def test_disc_dilation_is_the_distance_transform_within_reach(seed, rows, cols, density,
-                                                              reach):
-    """disc_dilation marks exactly the cells whose squared distance (scipy's distance
-    transform, squared and rounded) to a true cell is at most ``reach``, discs wider
-    than the grid and empty masks included."""
-    from scipy import ndimage
 
-    mask = np.random.default_rng(seed).random((rows, cols)) < density
-    if mask.any():
-        expected = np.rint(np.square(ndimage.distance_transform_edt(~mask))) <= reach
-    else:
-        expected = np.zeros_like(mask)
-    assert np.array_equal(disc_dilation(mask, reach), expected)
+@settings(max_examples=30, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 12), cols=st.integers(1, 12))
+def test_grid_graph_joins_each_drivable_cell_to_its_eight_neighbours(seed, rows, cols):
+    """The search graph, built row by row, is the 8-neighbour grid graph, both ways,
+    weighted by the centre-to-centre distance."""
+    from cga.difficulty.exploration import _grid_graph
+
+    drivable = np.random.default_rng(seed).random((rows, cols)) < 0.6
+    graph, index = _grid_graph(drivable, 0.25)
+    expected = np.zeros(graph.shape)
+    for (r, c) in zip(*np.nonzero(drivable)):
+        for dr in (-1, 0, 1):
+            for dc in (-1, 0, 1):
+                rr, cc = r + dr, c + dc
+                if (dr or dc) and 0 <= rr < rows and 0 <= cc < cols and drivable[rr, cc]:
+                    expected[index[r, c], index[rr, cc]] = 0.25 * np.hypot(dr, dc)
+    assert graph.has_sorted_indices
+    assert np.array_equal(graph.toarray(), expected)

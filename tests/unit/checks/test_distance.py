@@ -1,5 +1,6 @@
 """Distance transforms of boolean grids (cga.checks._distance): the very numbers of
-scipy.ndimage.distance_transform_edt, on random grids and on the scipy fallback."""
+scipy.ndimage.distance_transform_edt, on random grids and on the scipy fallback; disc
+dilations: the cells scipy's transform puts within reach."""
 
 from __future__ import annotations
 
@@ -10,7 +11,8 @@ from hypothesis import strategies as st
 from scipy import ndimage
 
 from cga.checks import _distance
-from cga.checks._distance import distance_to_false, squared_distance_to_false, squared_reach
+from cga.checks._distance import (disc_dilation, distance_to_false, squared_distance_to_false,
+                                  squared_reach)
 
 
 def _grid(seed: int, rows: int, cols: int, density: float) -> np.ndarray:
@@ -50,3 +52,19 @@ def test_squared_reach_picks_the_cells_the_float_test_picks(resolution):
         assert np.array_equal(within, d2 <= reach)
     assert squared_reach(-1.0, 0.05) == -1
     assert squared_reach(0.0, 0.05) == 0
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 40), cols=st.integers(1, 40),
+       density=st.sampled_from([0.002, 0.02, 0.3]), reach=st.integers(-1, 2000))
+def test_disc_dilation_is_the_distance_transform_within_reach(seed, rows, cols, density,
+                                                              reach):
+    """disc_dilation marks exactly the cells whose squared distance (scipy's distance
+    transform, squared and rounded) to a true cell is at most ``reach``, discs wider
+    than the grid and empty masks included."""
+    mask = np.random.default_rng(seed).random((rows, cols)) < density
+    if mask.any():
+        expected = np.rint(np.square(ndimage.distance_transform_edt(~mask))) <= reach
+    else:
+        expected = np.zeros_like(mask)
+    assert np.array_equal(disc_dilation(mask, reach), expected)
