@@ -46,6 +46,12 @@ from .palette import kind_material
 
 __all__ = ["scene_as_glb", "export_glb", "json_safe", "node_pivot"]
 
+_IDENTITY = np.eye(4)
+
+_PLAIN = frozenset({str, int, float, bool, type(None)})
+"""Types :func:`json_safe` returns as they are."""
+
+
 def json_safe(value: Any) -> Any:
     """``value`` as plain JSON data: numpy scalars/arrays → numbers/lists, tuples → lists,
     mappings with sorted string keys, sets as sorted lists.
@@ -55,6 +61,11 @@ def json_safe(value: Any) -> Any:
     TypeError
         A value with no JSON form (the message names its type).
     """
+    kind = type(value)
+    if kind in _PLAIN:  # the common case first: isinstance against ABCs is slow
+        return value
+    if kind is dict:
+        return {str(k): json_safe(value[k]) for k in sorted(value, key=str)}
     if value is None or isinstance(value, (bool, str)):
         return value
     if isinstance(value, (int, float)):
@@ -87,12 +98,25 @@ def node_pivot(node: SceneNode) -> np.ndarray:
     return matrix
 
 
-def _local_vertices(node: SceneNode, pivot: np.ndarray) -> np.ndarray:
-    """The node's vertices in its pivot's frame, on a micrometre grid, so instances of one
-    model land on identical local vertices."""
-    inverse = np.linalg.inv(pivot)
-    vertices = np.asarray(node.mesh.vertices, dtype=float) @ inverse[:3, :3].T + inverse[:3, 3]
+def _local_vertices(node: SceneNode, inverse: np.ndarray | None) -> np.ndarray:
+    """The node's vertices in the frame of its pivot, given as the pivot's ``inverse``
+    (None: the identity, for structure), on a micrometre grid, so instances of one model
+    land on identical local vertices."""
+    vertices = np.asarray(node.mesh.vertices, dtype=float)
+    if inverse is not None:
+        vertices = vertices @ inverse[:3, :3].T + inverse[:3, 3]
     return np.round(vertices, 6) + 0.0
+
+
+def _local_transforms(pivots: Sequence[np.ndarray]) -> list[np.ndarray | None]:
+    """The inverse of each pivot, None for the identity (:func:`_local_vertices`): one
+    batched :func:`numpy.linalg.inv` (the same LAPACK solve per matrix as one call each)."""
+    moved = [i for i, pivot in enumerate(pivots) if not np.array_equal(pivot, _IDENTITY)]
+    out: list[np.ndarray | None] = [None] * len(pivots)
+    if moved:
+        for i, inverse in zip(moved, np.linalg.inv(np.stack([pivots[i] for i in moved]))):
+            out[i] = inverse
+    return out
 
 
 def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Material, ...]] | None:
@@ -131,11 +155,20 @@ def _local_meshes(node: SceneNode, vertices: np.ndarray, normals: np.ndarray,
         chosen = faces[node.face_materials == k]
         if not len(chosen):
             continue
-        used, local = np.unique(chosen, return_inverse=True)
-        pieces.append(trimesh.Trimesh(vertices=vertices[used], faces=local.reshape(-1, 3),
+        used, local = _compact(chosen, len(vertices))
+        pieces.append(trimesh.Trimesh(vertices=vertices[used], faces=local,
                                       vertex_normals=normals[used],
                                       visual=looks.visual(material), process=False))
     return pieces
+
+
+def _compact(faces: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices (of ``count``) that ``faces`` use, ascending, and the faces renumbered
+    to them: :func:`numpy.unique` with its inverse, without its sort."""
+    used = np.zeros(count, dtype=bool)
+    used[faces] = True
+    renumbered = np.cumsum(used) - 1
+    return np.flatnonzero(used), renumbered[faces]
 
 
 class _Looks:
@@ -276,7 +309,8 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     instances = instance_ids(nodes)
     names = class_names()
     pivots = [node_pivot(node) for node in nodes]
-    local = [_local_vertices(node, pivot) for node, pivot in zip(nodes, pivots)]
+    local = [_local_vertices(node, inverse)
+             for node, inverse in zip(nodes, _local_transforms(pivots))]
     sources = [_source_key(node, vertices) for node, vertices in zip(nodes, local)]
     first: dict[tuple[bytes, tuple[Material, ...]], int] = {}
     meshed = [i for i, source in enumerate(sources)

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 import trimesh
 
 from cga.export.glb import scene_as_glb
@@ -142,3 +144,33 @@ def test_a_vertex_of_only_degenerate_triangles_points_up():
     assert np.array_equal(normals[0], np.zeros((2, 3)))
     assert np.allclose(normals[1][:3], [0, -1, 0]) and np.allclose(normals[1][3:], [0, 1, 0])
     assert np.allclose(normals[2][:3], [0, -1, 0]) and np.allclose(normals[2][3:], [0, 1, 0])
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.integers(1, 40).flatmap(
+    lambda n: st.tuples(st.just(n), st.lists(st.tuples(*[st.integers(0, n - 1)] * 3),
+                                             min_size=1, max_size=30))))
+def test_compacting_a_material_s_faces_is_numpy_unique_with_its_inverse(case):
+    from cga.export.glb import _compact
+
+    count, faces = case
+    faces = np.array(faces, dtype=np.int64)
+    used, local = _compact(faces, count)
+    expected_used, inverse = np.unique(faces, return_inverse=True)
+    assert np.array_equal(used, expected_used)
+    assert np.array_equal(local, inverse.reshape(-1, 3))
+    assert np.array_equal(used[local], faces)
+
+
+def test_local_vertices_are_those_of_each_pivot_s_own_inverse(glb):
+    """The batched inverse of the pivots puts every node's vertices where the inverse of
+    its own pivot does (structure, at the identity, is not moved at all)."""
+    import cga.export.glb as glb_module
+
+    _, nodes, _, _ = glb
+    pivots = [glb_module.node_pivot(node) for node in nodes]
+    for node, got in zip(nodes, glb_module._local_transforms(pivots)):
+        inverse = np.linalg.inv(glb_module.node_pivot(node))
+        vertices = np.asarray(node.mesh.vertices, dtype=float)
+        expected = np.round(vertices @ inverse[:3, :3].T + inverse[:3, 3], 6) + 0.0
+        assert np.array_equal(glb_module._local_vertices(node, got), expected), node.path
