@@ -79,3 +79,55 @@ def test_steering_stops_at_a_fixed_point_with_the_same_result():
     few = separation_steering(start, np.full(2, 0.5), np.ones(2, bool), room, half, 300)
     many = separation_steering(start, np.full(2, 0.5), np.ones(2, bool), room, half, 10**12)
     assert np.array_equal(few, many)
+
+
+def plain_steering(positions, radii, movable, polygon, half, iterations):
+    """Reynolds' two behaviours written plainly (numpy.linalg.norm, numpy.clip, every
+    round in full): the reference the round-trimmed implementation must match bit for bit."""
+    p = np.array(positions, dtype=float)
+    n = len(p)
+    if n < 2 or iterations <= 0 or not movable.any():
+        return p
+    minx, minz, maxx, maxz = polygon.bounds
+    lo, hi = np.array([minx, minz]) + half, np.array([maxx, maxz]) - half
+    middle = np.array([(minx + maxx) / 2, (minz + maxz) / 2])
+    lo, hi = np.where(lo <= hi, lo, middle), np.where(lo <= hi, hi, middle)
+    step_limit = 0.1 * np.hypot(maxx - minx, maxz - minz)
+    angles = np.pi * (3 - np.sqrt(5)) * np.arange(n)
+    fallback = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    for _ in range(iterations):
+        delta = p[:, None, :] - p[None, :, :]
+        distance = np.linalg.norm(delta, axis=2)
+        np.fill_diagonal(distance, np.inf)
+        direction = np.where(distance[..., None] > 1e-9,
+                             delta / np.where(distance > 1e-9, distance, 1.0)[..., None],
+                             fallback[:, None, :])
+        overlap = np.clip(radii[:, None] + radii[None, :] - distance, 0.0, None)
+        np.fill_diagonal(overlap, 0.0)
+        push = (direction * overlap[..., None]).sum(axis=1)
+        pull = (p.sum(axis=0) - p) / (n - 1) - p
+        velocity = 0.05 * pull + 0.5 * push
+        speed = np.linalg.norm(velocity, axis=1, keepdims=True)
+        velocity *= np.minimum(1.0, step_limit / np.maximum(speed, 1e-12))
+        proposal = np.clip(p + velocity, lo, hi)
+        take = movable & shapely.contains_xy(polygon, proposal[:, 0], proposal[:, 1])
+        p[take] = proposal[take]
+    return p
+
+
+def test_steering_gives_the_same_floats_as_the_plain_formulation():
+    rng = np.random.default_rng(5)
+    rooms = [box(0, 0, 5, 4), L_ROOM, box(0, 0, 1.5, 1.5)]
+    for case in range(300):
+        room = rooms[case % 3]
+        n = int(rng.integers(1, 14))
+        half = rng.uniform(0.1, 1.2, (n, 2))
+        start = random_start(room, half, rng)
+        if case % 5 == 0 and n > 2:
+            start[2] = start[1]  # coincident items take the fallback direction
+        radii = np.hypot(half[:, 0], half[:, 1])
+        movable = rng.random(n) > 0.2
+        iterations = int(rng.integers(0, 15))
+        got = separation_steering(start, radii, movable, room, half, iterations)
+        want = plain_steering(start, radii, movable, room, half, iterations)
+        assert got.tobytes() == want.tobytes(), case
