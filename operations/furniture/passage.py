@@ -31,7 +31,7 @@ their footprints), and a candidate costs one rectangle difference and a few pred
 from __future__ import annotations
 
 from collections.abc import Collection, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
@@ -73,10 +73,14 @@ _UNKNOWN = Blockage("", "")
 
 @dataclass
 class _State:
-    """The eroded floor left by one set of obstacles, and its verdict once known."""
+    """The eroded floor left by one set of obstacles, its verdict once known, and the
+    verdicts with each candidate tested against it so far (the solver tries the same
+    pose against the same items again while it seats families and goes back and forth
+    between attempts)."""
 
     floor: BaseGeometry
     verdict: Blockage | None = _UNKNOWN
+    with_candidate: dict[Box, Blockage | None] = field(default_factory=dict)
 
 
 class Passage:
@@ -129,15 +133,23 @@ class Passage:
 
         Notes
         -----
-        The eroded floors of the last few obstacle sets are kept, and a set's floor is
-        made from that of the set one item smaller when it is known; when the grown
-        candidate does not meet the floor, the verdict is that of ``obstacles``.
+        The eroded floors of the last few obstacle sets are kept with the verdicts of the
+        candidates tested against them (a candidate tested again costs a look-up), and a
+        set's floor is made from that of the set one item smaller when it is known; when
+        the grown candidate does not meet the floor, the verdict is that of ``obstacles``.
         Otherwise a candidate costs one rectangle difference, the pieces and their
         intersections with the approaches: tens of microseconds.
         """
         if not self.active:
             return None
         state = self._state(frozenset(obstacles))
+        verdict = state.with_candidate.get(candidate, _UNKNOWN)
+        if verdict is _UNKNOWN:
+            verdict = state.with_candidate[candidate] = self._candidate_verdict(state,
+                                                                                candidate)
+        return verdict
+
+    def _candidate_verdict(self, state: _State, candidate: Box) -> Blockage | None:
         grown = self._grown(candidate)
         if not state.floor.intersects(grown):
             if state.verdict is _UNKNOWN:

@@ -83,6 +83,22 @@ def test_the_verdict_does_not_depend_on_what_was_asked_before():
         assert shared.blockage(obstacles, candidate) == expected
 
 
+
+def test_a_candidate_asked_again_is_looked_up_for_its_own_obstacles(monkeypatch):
+    passage = Passage(ROOM, [BOTTOM, TOP], 0.6)
+    left, right = (0.0, 1.8, 2.6, 2.4), (2.9, 1.8, 5.0, 2.4)  # a row with a 0.3 m gap
+    computed = []
+    verdict = Passage._verdict
+    monkeypatch.setattr(Passage, "_verdict",
+                        lambda self, floor: computed.append(1) or verdict(self, floor))
+    assert passage.blockage([], left) is None
+    assert passage.blockage([], left) is None
+    assert len(computed) == 1
+    assert passage.blockage([right], left) == Blockage("door", "door 1")
+    assert passage.blockage([right], left) == Blockage("door", "door 1")
+    assert passage.blockage([], left) is None
+    assert len(computed) == 2
+
 # -- in the layout and the placer ----------------------------------------------------------
 
 def wardrobe(**rule) -> ItemSpec:
