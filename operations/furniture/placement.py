@@ -78,6 +78,16 @@ class Edge:
         return math.dist(self.start, self.end)
 
     @cached_property
+    def facing(self) -> int:
+        """The quarter turns of an item with its back to this edge (front into the room)."""
+        return quarter_turn_towards(self.normal)
+
+    @cached_property
+    def along(self) -> tuple[int, int]:
+        """The quarter turns of an item facing along this edge, forwards and backwards."""
+        return (quarter_turn_towards(self.direction), quarter_turn_towards(-self.direction))
+
+    @cached_property
     def axis(self) -> int | None:
         dx, dz = np.subtract(self.end, self.start)
         if abs(dz) <= _TOLERANCE * max(1.0, abs(dx)):
@@ -345,7 +355,7 @@ class Placer:
         def poses() -> Iterator[Pose]:
             for corner in sorted(self.corners, key=lambda c: math.dist(c.vertex, start)):
                 for back_edge in corner.edges:
-                    rotation = quarter_turn_towards(back_edge.normal)
+                    rotation = back_edge.facing
                     bbox = _bbox([p.box for p in spec.parts(rotation)])
                     coords = [0.0, 0.0]
                     for edge in corner.edges:
@@ -364,8 +374,8 @@ class Placer:
 
     def _wall_rotations(self, spec: ItemSpec, edge: Edge) -> list[int]:
         if not spec.rule.needs_turn:
-            return [quarter_turn_towards(edge.normal)]
-        return [quarter_turn_towards(edge.direction), quarter_turn_towards(-edge.direction)]
+            return [edge.facing]
+        return list(edge.along)
 
     def along_wall(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
         """Put ``spec`` against the nearest wall with room, at the spot nearest ``start``."""
