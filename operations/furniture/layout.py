@@ -32,7 +32,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 import shapely
@@ -78,15 +78,26 @@ class ItemSpec:
 
     def parts(self, rotation: int) -> tuple[EnvelopePart, ...]:
         """Body and clearance boxes relative to the centre (see :func:`.clearance.envelope`)."""
-        r = self.rule
-        return _envelope(self.width, self.depth, rotation % 4, r.clearance_front,
-                         r.clearance_back, r.clearance_side)
+        return self._parts[rotation % 4]
 
     def boxes(self, rotation: int) -> np.ndarray:
         """The boxes of :meth:`parts` as a ``(parts, 4)`` array (made once per shape)."""
+        return self._boxes[rotation % 4]
+
+    # the solver asks for an item's parts thousands of times: kept on the item, so a call
+    # is a tuple index rather than a cache look-up keyed by six numbers
+    @cached_property
+    def _parts(self) -> tuple[tuple[EnvelopePart, ...], ...]:
         r = self.rule
-        return _envelope_boxes(self.width, self.depth, rotation % 4, r.clearance_front,
-                               r.clearance_back, r.clearance_side)
+        return tuple(_envelope(self.width, self.depth, rotation, r.clearance_front,
+                               r.clearance_back, r.clearance_side) for rotation in range(4))
+
+    @cached_property
+    def _boxes(self) -> tuple[np.ndarray, ...]:
+        r = self.rule
+        return tuple(_envelope_boxes(self.width, self.depth, rotation, r.clearance_front,
+                                     r.clearance_back, r.clearance_side)
+                     for rotation in range(4))
 
 
 @lru_cache(maxsize=4096)
