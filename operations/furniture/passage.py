@@ -228,6 +228,10 @@ class Passage:
 
 def _pieces(geometry: BaseGeometry) -> np.ndarray:
     """The polygons of ``geometry`` with an area."""
+    if isinstance(geometry, Polygon):  # the usual case, without get_parts' overhead
+        parts = np.empty(1, dtype=object)
+        parts[0] = geometry
+        return parts if geometry.area > _AREA_EPS else parts[:0]
     parts = shapely.get_parts(geometry)
     return parts[shapely.area(parts) > _AREA_EPS] if len(parts) else parts
 
