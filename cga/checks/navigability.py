@@ -38,6 +38,7 @@ import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Literal
 
 import numpy as np
@@ -51,7 +52,7 @@ from shapely.geometry.base import BaseGeometry
 from cga.model import OUTSIDE, Door, FloorPlan, Room, Stair
 from cga.scene import Scene, SceneNode
 
-from ._distance import distance_to_false
+from ._distance import disc_dilation, distance_to_false
 from .occupancy import OccupancyGrid, occupancy_grid
 
 __all__ = [
@@ -361,6 +362,25 @@ def _path_minima(values: np.ndarray, parent: np.ndarray, root: int) -> tuple[np.
     return least, where
 
 
+def _short_reach(radius: float, res: float) -> int:
+    """The largest squared cell distance ``d2`` whose clearance, as
+    :meth:`_FloorCheck._clearance` computes it (``sqrt(d2) * res - res / 2``, float64),
+    is below ``radius``; -1 when none is. The clearance grows with ``d2``, so a cell is
+    drivable exactly when no blocked cell lies within this squared distance."""
+
+    def short(d2: int) -> bool:
+        return math.sqrt(d2) * res - res / 2 < radius
+
+    if not short(0):
+        return -1
+    d2 = max(0, math.floor(((radius + res / 2) / res) ** 2))
+    while short(d2 + 1):
+        d2 += 1
+    while d2 > 0 and not short(d2):
+        d2 -= 1
+    return d2
+
+
 class _FloorCheck:
     """The state of one floor's check: grids, clearances, labels, room masks."""
 
@@ -380,10 +400,10 @@ class _FloorCheck:
         # every door open: what the robot can reach; as built: what it reaches unaided
         opened = grid.occupied_by(o.path for o in grid.obstacles if o.door is None)
         self.clear = self._clearance(opened | outside_blocked)
-        self.drivable_as_built = self._clearance(grid.occupied | outside_blocked) >= radius
-        self.clear_bare = self._clearance(structure | outside_blocked)
+        self.drivable_as_built = self._drivable(grid.occupied | outside_blocked)
+        self.bare = structure | outside_blocked
         self.drivable = self.clear >= radius
-        self.drivable_bare = self.clear_bare >= radius
+        self.drivable_bare = self._drivable(self.bare)
         self.masks = {room.id: self._room_mask(room) for room in plan.rooms}
         self.labels = ndimage.label(self.drivable)[0]
         self.reached = np.zeros(grid.shape, dtype=bool)
@@ -394,6 +414,18 @@ class _FloorCheck:
         if not blocked.any():
             return np.full(blocked.shape, np.inf)
         return distance_to_false(~blocked) * self.res - self.res / 2
+
+    def _drivable(self, blocked: np.ndarray) -> np.ndarray:
+        """``self._clearance(blocked) >= self.radius``, the very cells, without the
+        distances: those farther from every blocked cell than :func:`_short_reach`."""
+        if not blocked.any():
+            return np.ones(blocked.shape, dtype=bool)
+        return ~disc_dilation(blocked, _short_reach(self.radius, self.res))
+
+    @cached_property
+    def clear_bare(self) -> np.ndarray:
+        """The clearance of the empty floor, only wanted to explain an unreachable room."""
+        return self._clearance(self.bare)
 
     def _room_mask(self, room: Room) -> np.ndarray:
         """The room's free floor shrunk by one cell, so doorway cells belong to no room."""

@@ -68,3 +68,17 @@ def test_disc_dilation_is_the_distance_transform_within_reach(seed, rows, cols, 
     else:
         expected = np.zeros_like(mask)
     assert np.array_equal(disc_dilation(mask, reach), expected)
+
+
+@settings(max_examples=60, deadline=None)
+@given(radius=st.floats(0.0, 2.0), resolution=st.sampled_from([0.05, 0.04, 0.1, 0.037]))
+def test_short_reach_splits_the_clearances_at_the_radius(radius, resolution):
+    """The navigability check's drivable cells, read off a disc dilation, are the cells
+    whose clearance (distance × resolution − half a cell, as the check computes it)
+    reaches the robot radius: every squared distance up to the short reach falls short."""
+    from cga.checks.navigability import _short_reach
+
+    reach = _short_reach(radius, resolution)
+    d2 = np.arange(0, 4 * (reach + 2) + 100)
+    clearance = np.sqrt(d2.astype(np.float64)) * resolution - resolution / 2
+    assert np.array_equal(clearance < radius, d2 <= reach)
