@@ -177,3 +177,17 @@ def test_a_facade_across_the_front_door_is_named_not_called_narrow(kit, two_room
     [reason] = [r for r in room.reasons if f"door {FRONT}" in r]
     assert "too narrow" not in reason
     assert "0.90 m wide" in reason and "Lot/Storey/Facade[0]/Pane" in reason
+
+
+def test_room_narrower_than_the_robot_even_when_empty(kit):
+    """A 0.45 m deep closet (0.25 m of floor between its walls) admits no robot of radius
+    0.25 m: the reason gives its largest clearance, about half its free depth."""
+    settings = kit.FloorSettings(windows_per_wall=0)
+    plan = kit.plan_from_rectangles([(0, 0, 4, 4), (4, 0, 4.45, 4)], settings=settings)
+    plan = kit.add_door(plan, kit.find_wall(plan, (0, kit.OUTSIDE)), front=True)
+    plan = kit.add_door(plan, kit.find_wall(plan, (0, 1)))
+    room = _rooms(check_navigability(kit.scene_of(plan), kit.structure(plan)))[1]
+    assert not room.reachable
+    reason = next(r for r in room.reasons if "even when empty" in r)
+    clearance = float(reason.split("largest clearance ")[1].split(" m")[0])
+    assert clearance == pytest.approx(0.125, abs=0.05)
