@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
-from cga.checks._distance import disc_dilation, distance_to_false, squared_reach
+from cga.checks._distance import disc_dilation, squared_reach
 from cga.model import OUTSIDE, FloorPlan
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -264,7 +264,7 @@ def grid_metrics(plan: FloorPlan, space: "DriveSpace", reach: "FloorReach",
         "free_area_share": float(free.sum() / room_cells) if room_cells else None}
     reached = space.reached
     # the floor the robot's body covers: cells within the radius of a reached centre
-    body = distance_to_false(~reached) * res <= radius if reached.any() else reached
+    body = disc_dilation(reached, squared_reach(radius, res))
     out["reachable_share"] = float((body & free).sum() / free.sum()) if free.any() else None
     clear = np.minimum(space.clearance, 100.0)
     floor = body & free
