@@ -30,8 +30,10 @@ import manifold3d
 import numpy as np
 import trimesh
 
+from cga import scene
+
 from ._bullet import MeshArrays
-from ._solids import _CONVEX_TOLERANCE, _MAX_PIECES, Piece
+from ._solids import _CONVEX_TOLERANCE, cut_pieces
 
 __all__ = ["box_pieces"]
 
@@ -79,26 +81,24 @@ def box_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
     whole = _Block(cells, grid, volumes)
     if whole.convex:
         return [mesh]
-    pieces = [whole]
-    for axis in (0, 2, 1):
-        for index in range(1, len(grid[axis]) - 1):
-            cut: list[_Block] = []
-            for piece in pieces:
-                # grid planes are _MIN_SPACING apart: strictly inside the piece's box
-                # (by more than convex_pieces' 1e-9) is strictly between its end planes
-                if piece.lo[axis] < index <= piece.hi[axis] and not piece.convex:
-                    upper = piece.cells.copy()
-                    np.moveaxis(upper, axis, 0)[:index] = False
-                    cut.extend(_Block(p, grid, volumes) for p in (upper, piece.cells & ~upper)
-                               if p.any())
-                else:
-                    cut.append(piece)
-            pieces = cut
-            if len(pieces) > _MAX_PIECES:
-                return None
-    if not all(piece.convex for piece in pieces):
+    planes = ((axis, index) for axis in (0, 2, 1) for index in range(1, len(grid[axis]) - 1))
+    pieces = cut_pieces([whole], planes, _split)
+    if pieces is None or not all(piece.convex for piece in pieces):
         return None
     return [piece.box() for piece in pieces]
+
+
+def _split(piece: "_Block", axis: int, index: int) -> "list[_Block] | None":
+    """The parts of ``piece`` on either side of grid plane ``index`` along ``axis``,
+    when the plane passes through it and it is not convex."""
+    # grid planes are _MIN_SPACING apart: strictly inside the piece's box (by more
+    # than convex_pieces' 1e-9) is strictly between its end planes
+    if not (piece.lo[axis] < index <= piece.hi[axis]) or piece.convex:
+        return None
+    upper = piece.cells.copy()
+    np.moveaxis(upper, axis, 0)[:index] = False
+    return [_Block(p, piece.grid, piece.volumes) for p in (upper, piece.cells & ~upper)
+            if p.any()]
 
 
 class _Block:
@@ -147,11 +147,11 @@ class _Block:
         hull = manifold3d.Manifold.hull_points(corners).volume()
         return hull > 0 and volume >= hull * (1.0 - _CONVEX_TOLERANCE)
 
-    def box(self) -> Piece:
+    def box(self) -> scene.MeshArrays:
         """The piece, which fills its bounding box, as that box's corners and triangles."""
         ends = [(self.grid[k][self.lo[k]], self.grid[k][self.hi[k] + 1]) for k in range(3)]
         corners = np.array([[ends[k][(bit >> k) & 1] for k in range(3)] for bit in range(8)])
-        return Piece(corners, _BOX_FACES.copy())
+        return scene.MeshArrays(corners, _BOX_FACES.copy())
 
 
 def _cells(x_faces: np.ndarray, grid: list[np.ndarray]) -> np.ndarray | None:

@@ -9,16 +9,21 @@ open surface, a user model with holes) gives ``None`` and the caller falls back.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import NamedTuple
+from collections.abc import Callable, Iterable, Sequence
+from typing import TypeVar
 
 import manifold3d
 import numpy as np
 import trimesh
 
+from cga import scene
+
 from ._bullet import MeshArrays
 
-__all__ = ["Piece", "as_manifold", "as_trimesh", "convex_pieces"]
+__all__ = ["as_manifold", "as_trimesh", "convex_pieces", "cut_pieces"]
+
+P = TypeVar("P")
+V = TypeVar("V")
 
 _CONVEX_TOLERANCE = 1e-6
 """A piece is convex when its volume is within this fraction of its hull's."""
@@ -53,13 +58,6 @@ def as_trimesh(solid: manifold3d.Manifold) -> trimesh.Trimesh:
                            faces=np.asarray(out.tri_verts, dtype=np.int64), process=False)
 
 
-class Piece(NamedTuple):
-    """A convex piece as arrays: ``vertices`` float[n, 3] and ``faces`` int[m, 3]."""
-
-    vertices: np.ndarray
-    faces: np.ndarray
-
-
 def convex_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
     """Cut a solid into convex pieces with axis-aligned planes through its vertices.
 
@@ -82,24 +80,45 @@ def convex_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
     if _is_convex(solid):
         return [mesh]
     vertices = np.asarray(solid.to_mesh().vert_properties[:, :3], dtype=float)
-    pieces = [_Cut(solid)]
-    for axis in (0, 2, 1):
-        normal = tuple(1.0 if k == axis else 0.0 for k in range(3))
-        for value in np.unique(vertices[:, axis]):
-            cut: list[_Cut] = []
-            for piece in pieces:
-                box = piece.box
-                if box[axis] + 1e-9 < value < box[axis + 3] - 1e-9 and not piece.convex:
-                    cut.extend(_Cut(p) for p in piece.solid.split_by_plane(normal, float(value))
-                               if p.volume() > _MIN_VOLUME)
-                else:
-                    cut.append(piece)
-            pieces = cut
-            if len(pieces) > _MAX_PIECES:
-                return None
-    if not all(piece.convex for piece in pieces):
+    planes = ((axis, float(value)) for axis in (0, 2, 1) for value in np.unique(vertices[:, axis]))
+    pieces = cut_pieces([_Cut(solid)], planes, _split)
+    if pieces is None or not all(piece.convex for piece in pieces):
         return None
     return [_arrays(piece.solid) for piece in pieces]
+
+
+def cut_pieces(pieces: list[P], planes: Iterable[tuple[int, V]],
+               split: Callable[[P, int, V], list[P] | None]) -> list[P] | None:
+    """Cut ``pieces`` by each plane ``(axis, position)`` in turn: ``split`` gives the
+    parts of a piece the plane cuts (None: the piece stays whole). A cut piece's parts
+    take its place, so the order of the pieces is the order of the cuts. None once
+    there are more than :data:`_MAX_PIECES` pieces.
+
+    The one cutting order :func:`convex_pieces` (manifold3d solids) and
+    :func:`cga.checks._boxes.box_pieces` (cells on a grid) share, so both make the
+    same pieces in the same order."""
+    for axis, position in planes:
+        cut: list[P] = []
+        for piece in pieces:
+            parts = split(piece, axis, position)
+            if parts is None:
+                cut.append(piece)
+            else:
+                cut.extend(parts)
+        pieces = cut
+        if len(pieces) > _MAX_PIECES:
+            return None
+    return pieces
+
+
+def _split(piece: "_Cut", axis: int, value: float) -> "list[_Cut] | None":
+    """The parts of ``piece`` on either side of the plane ``axis`` = ``value`` (slivers
+    of rounding dropped), when the plane passes through it and it is not convex."""
+    box = piece.box
+    if not (box[axis] + 1e-9 < value < box[axis + 3] - 1e-9) or piece.convex:
+        return None
+    normal = tuple(1.0 if k == axis else 0.0 for k in range(3))
+    return [_Cut(p) for p in piece.solid.split_by_plane(normal, value) if p.volume() > _MIN_VOLUME]
 
 
 class _Cut:
@@ -119,9 +138,9 @@ class _Cut:
         return self._convex
 
 
-def _arrays(solid: manifold3d.Manifold) -> Piece:
+def _arrays(solid: manifold3d.Manifold) -> scene.MeshArrays:
     out = solid.to_mesh()
-    return Piece(np.asarray(out.vert_properties[:, :3], dtype=float),
+    return scene.MeshArrays(np.asarray(out.vert_properties[:, :3], dtype=float),
                  np.asarray(out.tri_verts, dtype=np.int64))
 
 
