@@ -65,6 +65,9 @@ def box_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
     vertices = np.asarray(mesh.vertices, dtype=np.float32).astype(float)
     faces = np.asarray(mesh.faces, dtype=np.int64)
     triangles = vertices[faces]
+    # a triangle whose corners are collinear bounds nothing (a T-junction's sliver)
+    spans = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    triangles = triangles[np.any(spans != 0, axis=1)]
     flat = (triangles[:, 0] == triangles[:, 1]) & (triangles[:, 0] == triangles[:, 2])
     if not np.all(flat.sum(axis=1) == 1):
         return None

@@ -90,6 +90,20 @@ def test_solids_it_cannot_read_as_cells_are_left_to_manifold():
     assert box_pieces(sliver) is None  # two planes 0.5 mm apart
 
 
+def test_a_box_with_a_collinear_sliver_triangle_is_read_as_cells():
+    """A union of boxes left a T-junction on one face: a triangle whose corners lie on
+    one edge. It bounds nothing, so it must not make the solid unreadable."""
+    vertices = [[0, 0, 0], [0, 0, 0.5], [0, 0.5, 0], [0, 0.5, 0.5], [0.25, 0, 0],
+                [0.25, 0, 0.25], [0.25, 0, 0.5], [0.25, 0.25, 0], [0.25, 0.5, 0],
+                [0.25, 0.5, 0.5]]
+    faces = [[5, 4, 7], [0, 4, 1], [0, 2, 4], [0, 1, 3], [0, 3, 2], [1, 9, 3], [2, 3, 9],
+             [1, 4, 5], [1, 5, 6], [1, 6, 9], [6, 5, 8], [2, 8, 4], [2, 9, 8], [4, 8, 7],
+             [8, 5, 7], [6, 8, 9]]
+    solid = trimesh.Trimesh(vertices=vertices, faces=faces, process=False)
+    assert solid.is_watertight and abs(solid.volume - 0.0625) < 1e-12
+    assert box_pieces(solid) == [solid]  # one box: the mesh itself
+
+
 _cells = st.integers(min_value=0, max_value=6)
 
 
