@@ -1,0 +1,120 @@
+"""The build's triangle meshes as arrays, so a build never needs trimesh to hold them.
+
+Importing trimesh costs more CPU than meshing a whole house (it loads SciPy's spatial,
+sparse and optimize packages and networkx; issue 21's measurements: 0.6 s of a 2 s
+build). The meshing layer, the glTF writer and the checks only ever read a mesh's
+vertices, faces, bounds and whether it is closed, so :class:`TriangleMesh` keeps those as
+numpy arrays and answers them with numpy. Everything else trimesh offers (``volume``,
+``contains``, ``split``, ...) is still there for the exporters and tools that want it:
+such an attribute is read from a :class:`trimesh.Trimesh` made from the arrays on first
+use (:meth:`TriangleMesh.as_trimesh`), so code written against trimesh keeps working.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    import trimesh
+
+__all__ = ["TriangleMesh", "is_watertight", "transform_points"]
+
+_IDENTITY = np.eye(4)
+
+
+class TriangleMesh:
+    """A triangle mesh: ``vertices`` ``float[n, 3]``, ``faces`` ``int64[m, 3]``
+    (counter-clockwise seen from outside) and, for furniture, ``vertex_colors``
+    ``uint8[n, 4]`` (RGBA; None when the mesh has none).
+
+    Treat the arrays as read-only: they may be shared with the model library, and the
+    trimesh made by :meth:`as_trimesh` is kept and shares them too. Any attribute this
+    class does not define is looked up on that trimesh (made on first use).
+    """
+
+    __slots__ = ("vertices", "faces", "vertex_colors", "_bounds", "_trimesh")
+
+    def __init__(self, vertices: Any, faces: Any, vertex_colors: Any = None) -> None:
+        self.vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+        self.faces = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+        self.vertex_colors = None if vertex_colors is None else np.asarray(vertex_colors)
+        self._bounds: np.ndarray | None = None
+        self._trimesh: "trimesh.Trimesh | None" = None
+
+    @property
+    def bounds(self) -> np.ndarray:
+        """``[[min x, min y, min z], [max x, max y, max z]]`` of the vertices the faces
+        use (trimesh's definition), ``float[2, 3]``."""
+        if self._bounds is None:
+            used = self.vertices[self.faces.ravel()] if len(self.faces) else self.vertices
+            if not len(used):
+                raise ValueError("an empty mesh has no bounds")
+            self._bounds = np.array([used.min(axis=0), used.max(axis=0)])
+        return self._bounds
+
+    @property
+    def extents(self) -> np.ndarray:
+        """The size of :attr:`bounds` along each axis."""
+        return np.ptp(self.bounds, axis=0)
+
+    @property
+    def triangles(self) -> np.ndarray:
+        """The corners of every face, ``float[m, 3, 3]``."""
+        return self.vertices[self.faces]
+
+    @property
+    def is_empty(self) -> bool:
+        """Whether the mesh has no triangles."""
+        return not len(self.faces)
+
+    @property
+    def is_watertight(self) -> bool:
+        """Whether every edge is shared by exactly two faces (:func:`is_watertight`)."""
+        return is_watertight(self.faces)
+
+    def as_trimesh(self) -> "trimesh.Trimesh":
+        """The same mesh as a :class:`trimesh.Trimesh` (not processed: vertices and faces
+        as they are, with the vertex colours), made on first use and kept."""
+        if self._trimesh is None:
+            import trimesh
+
+            self._trimesh = trimesh.Trimesh(vertices=self.vertices, faces=self.faces,
+                                            vertex_colors=self.vertex_colors,
+                                            process=False, validate=False)
+        return self._trimesh
+
+    def __getattr__(self, name: str) -> Any:
+        # only called for names not found above: trimesh's other properties and methods
+        if name.startswith("__") or name in TriangleMesh.__slots__:
+            raise AttributeError(name)
+        return getattr(self.as_trimesh(), name)
+
+    def __repr__(self) -> str:
+        return f"<TriangleMesh, {len(self.vertices)} vertices, {len(self.faces)} faces>"
+
+
+def is_watertight(faces: np.ndarray) -> bool:
+    """Whether every edge of the triangles ``faces`` (``int[m, 3]``) is shared by exactly
+    two of them: trimesh's ``is_watertight`` (edges compared without direction)."""
+    faces = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+    if not len(faces):
+        return False
+    edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    keys = edges[:, 0] * (int(faces.max()) + 1) + edges[:, 1]
+    _, counts = np.unique(keys, return_counts=True)
+    return bool(np.all(counts == 2))
+
+
+def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
+    """``points`` (``float[n, 3]``) moved by the 4×4 affine ``matrix``, computed as
+    :func:`trimesh.transform_points` computes it (one product with the homogeneous
+    points; a matrix within 1e-8 of the identity leaves them as they are), so the floats
+    are the same bit for bit."""
+    points = np.asarray(points, dtype=np.float64)
+    matrix = np.asarray(matrix, dtype=np.float64)
+    if not len(points) or np.abs(matrix - _IDENTITY).max() < 1e-8:
+        return np.ascontiguousarray(points.copy())
+    stack = np.column_stack((points, np.ones(len(points))))
+    return np.dot(matrix, stack.T).T[:, :3]
