@@ -24,6 +24,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cga.mesh import as_trimesh
+
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
@@ -62,7 +64,7 @@ def collision_parts(node: "SceneNode", cache_dir: Path | None = None) -> list["M
     from cga.scene import MeshArrays
 
     return [MeshArrays(np.asarray(p.vertices), np.asarray(p.faces))
-            for p in convex_decomposition(node.mesh, cache=cache_dir)]
+            for p in convex_decomposition(as_trimesh(node.mesh), cache=cache_dir)]
 
 
 _MIN_VOLUME = 1e-9
@@ -104,7 +106,7 @@ def structure_pieces(node: "SceneNode") -> list[ConvexPiece]:
     """
     from cga.checks._solids import convex_pieces
 
-    mesh = node.mesh
+    mesh = as_trimesh(node.mesh)
     if not len(mesh.faces):
         return []
     if not (mesh.is_volume and mesh.volume > 0):

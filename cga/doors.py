@@ -41,10 +41,6 @@ import numpy as np
 
 from cga.model import DOOR_OPEN_ANGLE, Door, FloorPlan
 
-if TYPE_CHECKING:  # pragma: no cover
-    import trimesh
-
-
 __all__ = ["SIDE_GAP", "BOTTOM_GAP", "TOP_GAP", "DoorLeaf", "door_leaf",
            "leaf_model_matrix", "rotation_about_y", "slab_range"]
 
@@ -194,9 +190,10 @@ def leaf_model_matrix(leaf: DoorLeaf, bounds: np.ndarray, slab_z: tuple[float, f
     return matrix
 
 
-def slab_range(parts: Sequence["trimesh.Trimesh"]) -> tuple[float, float]:
-    """The z range of a door model's slab: its largest part by box volume."""
-    boxes = [np.ptp(p.bounds, axis=0) for p in parts]
+def slab_range(parts: Sequence[np.ndarray]) -> tuple[float, float]:
+    """The z range of a door model's slab: its largest part by box volume, given each
+    part's vertices (``float[n, 3]``)."""
+    boxes = [np.ptp(p, axis=0) for p in parts]
     slab = parts[int(np.argmax([float(np.prod(b)) for b in boxes]))]
-    return (float(slab.bounds[0, 2]), float(slab.bounds[1, 2]))
+    return (float(slab[:, 2].min()), float(slab[:, 2].max()))
 

@@ -12,16 +12,31 @@ use (:meth:`TriangleMesh.as_trimesh`), so code written against trimesh keeps wor
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
-__all__ = ["TriangleMesh", "is_watertight", "transform_points"]
+__all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "face_normals", "is_watertight", "transform_points",
+           "volume_and_centre"]
 
 _IDENTITY = np.eye(4)
+
+_ZERO = float(np.finfo(np.float64).resolution * 100)
+"""Cross products shorter than this have no direction (trimesh's ``util.TOL_ZERO``)."""
+
+
+class MeshLike(Protocol):
+    """Anything with ``vertices`` (``float[n, 3]``) and ``faces`` (``int[m, 3]``): a
+    :class:`TriangleMesh`, a trimesh, :class:`cga.scene.MeshArrays`."""
+
+    @property
+    def vertices(self) -> Any: ...
+
+    @property
+    def faces(self) -> Any: ...
 
 
 class TriangleMesh:
@@ -65,6 +80,16 @@ class TriangleMesh:
         return self.vertices[self.faces]
 
     @property
+    def triangles_center(self) -> np.ndarray:
+        """The mean of each face's corners, ``float[m, 3]``."""
+        return self.triangles.mean(axis=1)
+
+    @property
+    def face_normals(self) -> np.ndarray:
+        """Each face's unit normal, zero for a degenerate face (:func:`face_normals`)."""
+        return face_normals(self.triangles)[0]
+
+    @property
     def is_empty(self) -> bool:
         """Whether the mesh has no triangles."""
         return not len(self.faces)
@@ -95,6 +120,13 @@ class TriangleMesh:
         return f"<TriangleMesh, {len(self.vertices)} vertices, {len(self.faces)} faces>"
 
 
+def as_trimesh(mesh: "TriangleMesh | trimesh.Trimesh") -> "trimesh.Trimesh":
+    """``mesh`` as a :class:`trimesh.Trimesh`, for the exporters that work with trimesh's
+    own operations (sections, colours, convex hulls): a :class:`TriangleMesh`'s own
+    (:meth:`TriangleMesh.as_trimesh`), a trimesh as it is."""
+    return mesh.as_trimesh() if isinstance(mesh, TriangleMesh) else mesh
+
+
 def is_watertight(faces: np.ndarray) -> bool:
     """Whether every edge of the triangles ``faces`` (``int[m, 3]``) is shared by exactly
     two of them: trimesh's ``is_watertight`` (edges compared without direction)."""
@@ -105,6 +137,54 @@ def is_watertight(faces: np.ndarray) -> bool:
     keys = edges[:, 0] * (int(faces.max()) + 1) + edges[:, 1]
     _, counts = np.unique(keys, return_counts=True)
     return bool(np.all(counts == 2))
+
+
+def face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The unit normal of each triangle (``float[m, 3, 3]`` corners, counter-clockwise
+    seen from the side it faces) and whether it has one: a triangle whose corners' cross
+    product is (nearly) zero gets a zero normal. The floats are trimesh's
+    (``Trimesh.face_normals``: the same cross product and the same unitising steps)."""
+    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    norm = np.sqrt(np.dot(crosses * crosses, [1.0, 1.0, 1.0]))
+    valid = norm > _ZERO
+    norm[valid] **= -1
+    unit = crosses * norm.reshape((-1, 1))
+    unit[~valid] = 0.0
+    return unit, valid
+
+
+def volume_and_centre(triangles: np.ndarray) -> tuple[float, np.ndarray]:
+    """The enclosed volume and the centre of mass of a closed surface's triangles
+    (``float[m, 3, 3]``, facing outwards), by the divergence theorem over each triangle
+    (Eberly, "Polyhedral mass properties (revisited)", 2002): the subexpressions and
+    sums of trimesh's ``triangles.mass_properties``, so the floats are the same. The
+    centre is not finite when the volume is zero."""
+    triangles = np.asarray(triangles, dtype=np.float64)
+    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    a, b, c = triangles[:, 0, :], triangles[:, 1, :], triangles[:, 2, :]
+    f1 = a + b + c
+    f2 = a**2 + b**2 + a * b + c * f1
+    integral = np.zeros((4, len(f1)))
+    integral[0] = crosses[:, 0] * f1[:, 0]
+    integral[1:4] = (crosses * f2).T
+    integrated = integral.sum(axis=1) / np.array([6, 24, 24, 24], dtype=np.float64)
+    volume = float(integrated[0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return volume, integrated[1:4] / integrated[0]
+
+
+def area_centroid(triangles: np.ndarray) -> np.ndarray:
+    """The area-weighted mean of the triangles' centres (``float[m, 3, 3]`` corners), or
+    their plain mean when every triangle is degenerate: trimesh's ``Trimesh.centroid``."""
+    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    areas = np.sqrt((crosses**2).sum(axis=1)) / 2.0
+    centres = triangles.mean(axis=1)
+    if not areas.sum() > 0:
+        return np.asarray(centres.mean(axis=0))
+    return np.asarray(np.average(centres, weights=areas, axis=0))
 
 
 def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:

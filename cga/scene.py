@@ -27,6 +27,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cga.operations.furniture.library import ModelGeometry, ModelLibrary
 
     from .doors import DoorLeaf
+    from .mesh import TriangleMesh
 
 __all__ = ["ItemInfo", "MeshArrays", "NodeKind", "Scene", "SceneNode"]
 
@@ -88,6 +89,10 @@ class MeshArrays:
 class SceneNode:
     """A named piece of output geometry, in world coordinates (metres, y up).
 
+    ``mesh`` is a :class:`cga.mesh.TriangleMesh` in a build (arrays; trimesh's other
+    attributes made on demand), or any :class:`trimesh.Trimesh` a caller builds a node
+    from: consumers read only ``vertices``, ``faces`` and ``bounds`` on the hot path.
+
     ``path`` is the semantic node name, e.g. ``floor1/room3_Kitchen/wall2`` or
     ``floor0/room1_Livingroom/furniture/sofa``; ``kind`` is a :data:`NodeKind`. ``parts``
     are the convex pieces of a furniture item as arrays (:class:`MeshArrays`; physics uses
@@ -102,7 +107,7 @@ class SceneNode:
 
     path: str
     kind: NodeKind
-    mesh: "trimesh.Trimesh"
+    mesh: "TriangleMesh | trimesh.Trimesh"
     extras: dict[str, Any] = field(default_factory=dict)
     static: bool = True
     parts: tuple[MeshArrays, ...] = ()

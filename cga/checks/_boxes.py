@@ -28,11 +28,10 @@ from collections.abc import Sequence
 
 import manifold3d
 import numpy as np
-import trimesh
 
 from cga import scene
+from cga.mesh import MeshLike, is_watertight
 
-from ._bullet import MeshArrays
 from ._solids import _CONVEX_TOLERANCE, cut_pieces
 
 __all__ = ["box_pieces"]
@@ -51,7 +50,7 @@ _BOX_FACES = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1
 counter-clockwise seen from outside."""
 
 
-def box_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
+def box_pieces(mesh: MeshLike) -> Sequence[MeshLike] | None:
     """The pieces :func:`~cga.checks._solids.convex_pieces` cuts ``mesh`` into, computed on
     the solid's cell grid; ``None`` when ``mesh`` is not a watertight rectilinear solid
     this can read (the caller then uses ``convex_pieces``).
@@ -74,7 +73,7 @@ def box_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
     grid = [np.unique(vertices[:, k]) for k in range(3)]
     if any(len(g) < 2 or float(np.diff(g).min()) < _MIN_SPACING for g in grid):
         return None
-    if not mesh.is_watertight:
+    if not is_watertight(faces):
         return None
     cells = _cells(triangles[flat[:, 0]], grid)
     if cells is None:

@@ -20,11 +20,13 @@ import sys
 from collections.abc import Iterator
 from collections.abc import Sequence
 from types import ModuleType
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 
-__all__ = ["MeshArrays", "quiet_output", "pybullet", "direct_client", "obj_text", "obj_objects"]
+from cga.mesh import MeshLike
+
+__all__ = ["quiet_output", "pybullet", "direct_client", "obj_text", "obj_objects"]
 
 
 @contextlib.contextmanager
@@ -68,17 +70,9 @@ def direct_client() -> Iterator[tuple[ModuleType, int]]:
         pb.disconnect(physicsClientId=client)
 
 
-class MeshArrays(Protocol):
-    """Anything with ``vertices`` (n × 3) and ``faces`` (m × 3): a trimesh or plain arrays."""
-
-    @property
-    def vertices(self) -> Any: ...
-
-    @property
-    def faces(self) -> Any: ...
 
 
-def obj_text(meshes: Sequence[MeshArrays], *, offset: Sequence[float] = (0.0, 0.0, 0.0)) -> str:
+def obj_text(meshes: Sequence[MeshLike], *, offset: Sequence[float] = (0.0, 0.0, 0.0)) -> str:
     """OBJ text with one object (``o partN``) per mesh, vertices moved by ``-offset``
     (written to the nanometre)."""
     chunks: list[str] = []

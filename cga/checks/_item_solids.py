@@ -27,10 +27,9 @@ from pathlib import Path
 
 import numpy as np
 import shapely
-import trimesh
-from trimesh.triangles import mass_properties
 
 from cga.collision import collision_parts, shrink_part
+from cga.mesh import area_centroid, volume_and_centre
 from cga.scene import SceneNode
 
 from ._bullet import obj_text
@@ -77,19 +76,16 @@ class ItemShape:
 
 
 def measure(parts: Sequence[tuple[np.ndarray, np.ndarray]], *, shared: bool = False) -> Solid:
-    """The centre of mass and volume of convex parts, by trimesh's mass-property routine
-    on each part's triangles (a part's area centroid stands in when it encloses no
-    volume)."""
+    """The centre of mass and volume of convex parts, by the divergence theorem on each
+    part's triangles (:func:`cga.mesh.volume_and_centre`; a part's area centroid stands
+    in when it encloses no volume)."""
     arrays = tuple((np.asarray(v, dtype=float), np.asarray(f, dtype=np.int64)) for v, f in parts)
     volumes, centres = [], []
     for vertices, faces in arrays:
-        props = mass_properties(vertices[faces], skip_inertia=True)
-        volume = max(float(props.volume), 0.0)
-        if volume > 0:
-            centre = np.asarray(props.center_mass, dtype=float)
-        else:
-            centre = np.asarray(trimesh.Trimesh(vertices=vertices, faces=faces,
-                                                process=False).centroid, dtype=float)
+        volume, centre = volume_and_centre(vertices[faces])
+        volume = max(volume, 0.0)
+        if not volume > 0:
+            centre = area_centroid(vertices[faces])
         volumes.append(volume)
         centres.append(centre)
     weights = np.array(volumes)

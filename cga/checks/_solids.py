@@ -14,13 +14,12 @@ from typing import TypeVar
 
 import manifold3d
 import numpy as np
-import trimesh
 
 from cga import scene
+from cga.mesh import MeshLike, TriangleMesh, is_watertight
 
-from ._bullet import MeshArrays
 
-__all__ = ["as_manifold", "as_trimesh", "convex_pieces", "cut_pieces"]
+__all__ = ["as_manifold", "as_mesh", "convex_pieces", "cut_pieces"]
 
 P = TypeVar("P")
 V = TypeVar("V")
@@ -35,13 +34,13 @@ _MAX_PIECES = 256
 """Cutting stops (and :func:`convex_pieces` gives up) beyond this many pieces."""
 
 
-def as_manifold(mesh: trimesh.Trimesh) -> manifold3d.Manifold | None:
+def as_manifold(mesh: MeshLike) -> manifold3d.Manifold | None:
     """``mesh`` as a manifold3d solid, or ``None`` when it is empty or not watertight.
 
     Watertightness is tested first (every edge shared by exactly two triangles):
     manifold3d 3.5 can crash on some open surfaces, such as a facade face with a door
     cut out, instead of reporting them as not manifold."""
-    if len(mesh.faces) == 0 or not mesh.is_watertight:
+    if len(mesh.faces) == 0 or not is_watertight(np.asarray(mesh.faces)):
         return None
     solid = manifold3d.Manifold(manifold3d.Mesh(
         vert_properties=np.asarray(mesh.vertices, dtype=np.float32),
@@ -51,14 +50,14 @@ def as_manifold(mesh: trimesh.Trimesh) -> manifold3d.Manifold | None:
     return solid
 
 
-def as_trimesh(solid: manifold3d.Manifold) -> trimesh.Trimesh:
-    """A manifold3d solid as a trimesh (vertex positions only)."""
+def as_mesh(solid: manifold3d.Manifold) -> TriangleMesh:
+    """A manifold3d solid as a mesh (vertex positions only)."""
     out = solid.to_mesh()
-    return trimesh.Trimesh(vertices=np.asarray(out.vert_properties[:, :3], dtype=float),
-                           faces=np.asarray(out.tri_verts, dtype=np.int64), process=False)
+    return TriangleMesh(np.asarray(out.vert_properties[:, :3], dtype=float),
+                        np.asarray(out.tri_verts, dtype=np.int64))
 
 
-def convex_pieces(mesh: trimesh.Trimesh) -> Sequence[MeshArrays] | None:
+def convex_pieces(mesh: MeshLike) -> Sequence[MeshLike] | None:
     """Cut a solid into convex pieces with axis-aligned planes through its vertices.
 
     A building's structure is rectilinear: a wall is a box with rectangular openings, a

@@ -36,11 +36,11 @@ from typing import Protocol
 
 import numpy as np
 import shapely
-import trimesh
 from PIL import Image, ImageDraw
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
+from cga.mesh import MeshLike
 from cga.model import FloorPlan
 from cga.scene import MeshArrays, NodeKind, SceneNode
 
@@ -220,7 +220,7 @@ def band_footprints(nodes: Sequence[SceneNode], y0: float, y1: float) -> list[Ba
     return [g if g is not None else Polygon() for g in out]
 
 
-def _solid_footprint(mesh: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:
+def _solid_footprint(mesh: MeshLike, y0: float, y1: float) -> BaseGeometry:
     """The band shadow of a mesh that is not made of convex parts: clipped and projected
     with manifold3d, or triangle by triangle when it is not a watertight solid."""
     solid = as_manifold(mesh)
@@ -290,9 +290,13 @@ def _convex_shadows(groups: Sequence[Sequence[MeshArrays]], y0: float,
     return list(shapely.union_all(table, axis=1)) if len(groups) else []
 
 
-def _sheet_footprint(mesh: trimesh.Trimesh, y0: float, y1: float) -> BaseGeometry:
-    """The shadow of an open mesh's triangles between heights ``y0`` and ``y1``."""
-    part = trimesh.intersections.slice_mesh_plane(mesh, (0.0, 1.0, 0.0), (0.0, y0, 0.0))
+def _sheet_footprint(mesh: MeshLike, y0: float, y1: float) -> BaseGeometry:
+    """The shadow of an open mesh's triangles between heights ``y0`` and ``y1``
+    (trimesh's plane slicing: open meshes are rare, a massing grammar's faces)."""
+    import trimesh
+
+    part = trimesh.Trimesh(vertices=mesh.vertices, faces=mesh.faces, process=False)
+    part = trimesh.intersections.slice_mesh_plane(part, (0.0, 1.0, 0.0), (0.0, y0, 0.0))
     if len(part.faces):
         part = trimesh.intersections.slice_mesh_plane(part, (0.0, -1.0, 0.0), (0.0, y1, 0.0))
     if not len(part.faces):

@@ -31,7 +31,7 @@ from cga.cache import cache_root
 from cga.fsutil import atomic_write
 
 from ._bullet import obj_objects, obj_text, pybullet, quiet_output
-from ._solids import as_manifold, as_trimesh
+from ._solids import as_manifold, as_mesh
 
 __all__ = ["VHACD_PARAMETERS", "cache_dir", "cache_key", "convex_decomposition"]
 
@@ -142,5 +142,5 @@ def _decompose(mesh: trimesh.Trimesh) -> list[np.ndarray]:
         clipped = manifold3d.Manifold.hull_points(points.astype(np.float64)) ^ bound
         if clipped.is_empty() or clipped.volume() <= 0:
             continue
-        hulls.append(np.asarray(as_trimesh(clipped.hull()).vertices))
+        hulls.append(np.asarray(as_mesh(clipped.hull()).vertices))
     return hulls

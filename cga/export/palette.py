@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from cga.appearance.material import Material, linear_to_srgb
+from cga.mesh import as_trimesh
 
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
@@ -153,7 +154,7 @@ def node_face_colors(node: "SceneNode") -> np.ndarray:
     if node.materials and node.face_materials is not None:
         colors = np.array([m.color for m in node.materials], dtype=float)
         return colors[node.face_materials]
-    return face_colors(node.mesh, node.kind)
+    return face_colors(as_trimesh(node.mesh), node.kind)
 
 
 def hex_color(color: RGB) -> str:

@@ -23,6 +23,7 @@ import trimesh
 from PIL import Image
 
 from cga.fsutil import atomic_write
+from cga.mesh import as_trimesh
 from cga.scene import Scene, SceneNode
 
 from .palette import face_colors, node_color, node_face_colors
@@ -74,7 +75,8 @@ def _storey_triangles(nodes: Sequence[SceneNode], cut_y: float | None):
     for node in nodes:
         if node.kind in ("ceiling", "roof"):
             continue
-        cut = (node.mesh, np.arange(len(node.mesh.faces))) if cut_y is None else _cut(node.mesh, cut_y)
+        whole = as_trimesh(node.mesh)
+        cut = (whole, np.arange(len(whole.faces))) if cut_y is None else _cut(whole, cut_y)
         if cut is None or len(cut[0].faces) == 0:
             continue
         mesh, source = cut

@@ -11,9 +11,9 @@ from collections.abc import Sequence
 from functools import cache
 
 import numpy as np
-import trimesh
 
 from cga.doors import door_leaf, leaf_model_matrix, slab_range
+from cga.mesh import TriangleMesh, transform_points
 from cga.model import FloorPlan, FurnitureItem
 from cga.operations.furniture.library import FurnitureModel
 from cga.scene import ItemInfo, MeshArrays, SceneNode
@@ -36,10 +36,11 @@ def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> Sc
     if door is None:
         raise KeyError(f"furniture item {item.name!r} hangs in door {item.door}, which "
                        f"floor {plan.index} does not have")
-    slab = slab_range(model.parts)
+    geometry = model.geometry
+    slab = slab_range(geometry.vertices)
     leaf = door_leaf(plan, door, slab[1] - slab[0])
     frame = leaf.frame()
-    mesh = leaf_mesh(model.mesh, frame @ leaf_model_matrix(leaf, model.mesh.bounds, slab))
+    mesh = leaf_mesh(geometry.joined, frame @ leaf_model_matrix(leaf, geometry.joined.bounds, slab))
     centre, extents = leaf.box()
     room = plan.room(item.room)
     return SceneNode(
@@ -62,15 +63,20 @@ def box_arrays(extents: np.ndarray, matrix: np.ndarray) -> MeshArrays:
     without making a mesh. ``matrix`` turns and moves (a hinge frame), so the triangles
     keep their winding."""
     unit = _unit_box()
-    return MeshArrays(trimesh.transform_points(unit.vertices * np.asarray(extents, dtype=float),
-                                               matrix), unit.faces)
+    return MeshArrays(transform_points(unit.vertices * np.asarray(extents, dtype=float), matrix),
+                      unit.faces)
 
 
 @cache
 def _unit_box() -> MeshArrays:
-    """trimesh's box of unit extents about the origin."""
-    box = trimesh.creation.box()
-    return MeshArrays(np.asarray(box.vertices).copy(), np.asarray(box.faces).copy())
+    """trimesh's box of unit extents about the origin (``trimesh.creation.box()``): its
+    corners and triangles, written out."""
+    corners = np.array([[-1, -1, -1], [-1, -1, 1], [-1, 1, -1], [-1, 1, 1],
+                        [1, -1, -1], [1, -1, 1], [1, 1, -1], [1, 1, 1]], dtype=np.float64) / 2
+    faces = np.array([[1, 3, 0], [4, 1, 0], [0, 3, 2], [2, 4, 0], [1, 7, 3], [5, 1, 4],
+                      [5, 7, 1], [3, 7, 2], [6, 4, 2], [2, 7, 6], [6, 5, 4], [7, 5, 6]],
+                     dtype=np.int64)
+    return MeshArrays(corners, faces)
 
 
 def _translation(offset: Sequence[float] | np.ndarray) -> np.ndarray:
@@ -79,13 +85,10 @@ def _translation(offset: Sequence[float] | np.ndarray) -> np.ndarray:
     return matrix
 
 
-def leaf_mesh(mesh: trimesh.Trimesh, matrix: np.ndarray) -> trimesh.Trimesh:
+def leaf_mesh(mesh: TriangleMesh, matrix: np.ndarray) -> TriangleMesh:
     """``mesh`` moved by ``matrix``, its triangles turned over when the matrix mirrors
     (a leaf hinged at the model's +x side), colours kept."""
-    faces = np.asarray(mesh.faces)
+    faces = mesh.faces
     if np.linalg.det(matrix[:3, :3]) < 0:
         faces = faces[:, ::-1]
-    return trimesh.Trimesh(vertices=trimesh.transform_points(mesh.vertices, matrix),
-                           faces=faces.copy(),
-                           visual=mesh.visual.copy() if mesh.visual is not None else None,
-                           process=False)
+    return TriangleMesh(transform_points(mesh.vertices, matrix), faces, mesh.vertex_colors)

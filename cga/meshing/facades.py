@@ -31,6 +31,7 @@ import shapely
 import trimesh
 from shapely.geometry import Polygon
 
+from cga.mesh import MeshLike, TriangleMesh, is_watertight
 from cga.model import FloorPlan, Opening, Wall
 from cga.scene import SceneNode
 
@@ -127,9 +128,9 @@ def _opening_box(wall: Wall, opening: Opening, y0: float) -> manifold3d.Manifold
     return manifold3d.Manifold.cube((opening.width, opening.height, FACADE_DEPTH + 2 * t)).transform(frame)
 
 
-def _cut_solid(mesh: trimesh.Trimesh, cutter: manifold3d.Manifold) -> trimesh.Trimesh | None:
+def _cut_solid(mesh: MeshLike, cutter: manifold3d.Manifold) -> trimesh.Trimesh | None:
     """A watertight mesh less the cutter; None when the mesh is not a solid."""
-    if not mesh.is_watertight:  # see cga.checks._solids.as_manifold
+    if not is_watertight(np.asarray(mesh.faces)):  # see cga.checks._solids.as_manifold
         return None
     solid = manifold3d.Manifold(manifold3d.Mesh64(
         vert_properties=np.asarray(mesh.vertices, dtype=float),
@@ -141,7 +142,7 @@ def _cut_solid(mesh: trimesh.Trimesh, cutter: manifold3d.Manifold) -> trimesh.Tr
                            faces=np.asarray(out.tri_verts, dtype=np.int64), process=False)
 
 
-def _cut_face(node: SceneNode, cutter: manifold3d.Manifold) -> trimesh.Trimesh | None:
+def _cut_face(node: SceneNode, cutter: manifold3d.Manifold) -> "TriangleMesh | trimesh.Trimesh | None":
     """A planar face less the cutter's cross-section in the face's plane."""
     from .shapes import polygon_mesh
 

@@ -23,12 +23,14 @@ from __future__ import annotations
 import manifold3d
 import numpy as np
 import shapely
-import trimesh
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.polygon import orient
 
+from cga.mesh import TriangleMesh, is_watertight
 from cga.model import FloorPlan, Opening, Wall
 from cga.scene import SceneNode
+
+from .prisms import prism
 
 __all__ = ["wall_footprints", "floor_nodes"]
 
@@ -132,11 +134,11 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
         piece = footprints.get(wall.id)
         if piece is None:
             continue
-        vertices, faces = _prism(piece, y0, top)
+        vertices, faces = prism(piece, y0, top)
         if wall.openings:
             mesh = _cut(vertices, faces, [_opening_box(wall, o, y0) for o in wall.openings])
         else:
-            mesh = _trimesh(vertices, faces)
+            mesh = _mesh(vertices, faces)
         rooms = [r for r in wall.rooms if r >= 0]
         path = f"floor{plan.index}/{labels[min(rooms)]}/wall{wall.id}"
         nodes.append(SceneNode(path, "wall", mesh, extras={
@@ -151,7 +153,7 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
                                    "stairwell": below.id if (below := plan.stair_down) else None}))
     if plan.is_top:
         nodes.append(SceneNode(f"floor{plan.index}/roof", "roof",
-                               _trimesh(*_prism(plan.footprint, top, top + slab)),
+                               _mesh(*prism(plan.footprint, top, top + slab)),
                                extras={"floor": plan.index}))
     return nodes
 
@@ -222,45 +224,15 @@ def _without_slivers(geometry) -> Polygon | MultiPolygon | None:
     return parts[0] if len(parts) == 1 else MultiPolygon(parts)
 
 
-def _prism(area: Polygon | MultiPolygon, y_low: float, y_high: float) -> tuple[np.ndarray, np.ndarray]:
-    """Vertices and triangles of a vertical prism over a plan area.
-
-    Built directly from the coordinates (going through ``manifold3d.CrossSection``
-    would snap them to single precision). Rings are oriented (exteriors
-    counter-clockwise in ``(x, z)``, holes clockwise); a triangle counter-clockwise in
-    ``(x, z)`` faces down, so the floor cap keeps the triangulation's order and the top
-    cap reverses it.
-    """
-    rings = []
-    for polygon in getattr(area, "geoms", [area]):
-        polygon = orient(polygon, sign=1.0)
-        rings += [np.asarray(r.coords)[:-1] for r in (polygon.exterior, *polygon.interiors)]
-    plan = np.concatenate(rings)
-    n = len(plan)
-    caps = np.asarray(manifold3d.triangulate(rings), dtype=np.int64)
-    sides = []
-    offset = 0
-    for ring in rings:
-        a = offset + np.arange(len(ring))
-        b = offset + (np.arange(len(ring)) + 1) % len(ring)
-        sides += [np.column_stack([a, b + n, b]), np.column_stack([a, a + n, b + n])]
-        offset += len(ring)
-    vertices = np.empty((2 * n, 3))
-    vertices[:n, 0] = vertices[n:, 0] = plan[:, 0]
-    vertices[:n, 2] = vertices[n:, 2] = plan[:, 1]
-    vertices[:n, 1], vertices[n:, 1] = y_low, y_high
-    return vertices, np.vstack([caps, caps[:, ::-1] + n, *sides])
-
-
 def _slab(area: Polygon | MultiPolygon, rooms: list[Polygon], y_low: float,
-          y_high: float) -> trimesh.Trimesh:
+          y_high: float) -> TriangleMesh:
     """The floor slab: the prism over ``area`` whose walking surface is triangulated room
     by room (each room's floor, then the rest: the walls' footprint), so every top
     triangle lies in one room and the appearance can give each room its own floor
     (docs/appearance.md). Shared corners are one vertex, so the slab stays watertight; if
     a room's outline would break that (a corner on the slab's edge), the top is one
     triangulation, as for any prism."""
-    vertices, faces = _prism(area, y_low, y_high)
+    vertices, faces = prism(area, y_low, y_high)
     pieces = [area.intersection(room) for room in rooms]
     pieces = [p for p in pieces if not p.is_empty and p.area > _SLIVER]
     rest = area.difference(shapely.union_all(pieces)) if pieces else area
@@ -287,15 +259,14 @@ def _slab(area: Polygon | MultiPolygon, rooms: list[Polygon], y_low: float,
         triangles = np.asarray(manifold3d.triangulate(polygon_rings), dtype=np.int64)
         top.append(ids[triangles.reshape(-1, 3)[:, ::-1]])
     caps = _cap_count(faces, n)
-    candidate = _trimesh(np.vstack([vertices, *extra]) if extra else vertices,
-                         np.vstack([faces[:caps], faces[2 * caps:], *top]))
-    if candidate.is_watertight:
-        return candidate
-    return _trimesh(vertices, faces)
+    candidate = np.vstack([faces[:caps], faces[2 * caps:], *top])
+    if is_watertight(candidate):
+        return _mesh(np.vstack([vertices, *extra]) if extra else vertices, candidate)
+    return _mesh(vertices, faces)
 
 
 def _cap_count(faces: np.ndarray, n: int) -> int:
-    """How many triangles one cap of a :func:`_prism` has (the bottom cap comes first,
+    """How many triangles one cap of a :func:`~.prisms.prism` has (the bottom cap comes first,
     then the top cap, then the sides)."""
     return int(np.count_nonzero((faces < n).all(axis=1)))
 
@@ -304,8 +275,8 @@ def _key3(vertex: np.ndarray) -> tuple[float, float]:
     return (round(float(vertex[0]), _DIGITS), round(float(vertex[2]), _DIGITS))
 
 
-def _trimesh(vertices: np.ndarray, faces: np.ndarray) -> trimesh.Trimesh:
-    return trimesh.Trimesh(vertices=vertices, faces=faces, process=False, validate=False)
+def _mesh(vertices: np.ndarray, faces: np.ndarray) -> TriangleMesh:
+    return TriangleMesh(vertices, faces)
 
 
 def _opening_box(wall: Wall, opening: Opening, y0: float) -> manifold3d.Manifold:
@@ -323,9 +294,9 @@ def _opening_box(wall: Wall, opening: Opening, y0: float) -> manifold3d.Manifold
     return manifold3d.Manifold.cube((opening.width, height, 4 * t)).transform(frame)
 
 
-def _cut(vertices: np.ndarray, faces: np.ndarray, cutters: list[manifold3d.Manifold]) -> trimesh.Trimesh:
+def _cut(vertices: np.ndarray, faces: np.ndarray, cutters: list[manifold3d.Manifold]) -> TriangleMesh:
     """The solid minus the cutters, by one manifold batch subtraction."""
     solid = manifold3d.Manifold(manifold3d.Mesh64(vert_properties=vertices,
                                                   tri_verts=faces.astype(np.uint64)))
     result = manifold3d.Manifold.batch_boolean([solid, *cutters], manifold3d.OpType.Subtract).to_mesh64()
-    return _trimesh(np.asarray(result.vert_properties)[:, :3], np.asarray(result.tri_verts))
+    return _mesh(np.asarray(result.vert_properties)[:, :3], np.asarray(result.tri_verts))

@@ -17,14 +17,13 @@ from __future__ import annotations
 import manifold3d
 import numpy as np
 import shapely
-import trimesh
 from shapely.geometry import LineString, Polygon
 
+from cga.mesh import TriangleMesh, transform_points
 from cga.model import Flight, FloorPlan, Stair
 from cga.scene import SceneNode
-from cga.shape import Mass
 
-from .shapes import mass_mesh
+from .prisms import prism, prism_mesh
 
 __all__ = ["RAIL_HEIGHT", "RAIL_THICKNESS", "flight_mesh", "stair_mesh", "rail_footprint",
            "stair_nodes"]
@@ -56,11 +55,11 @@ def _profile(flight: Flight) -> Polygon:
     return shapely.Polygon(points)
 
 
-def flight_mesh(flight: Flight) -> trimesh.Trimesh:
-    """The flight as a watertight prism in world coordinates (y up)."""
-    profile = _profile(flight)
-    mesh = trimesh.creation.extrude_polygon(profile, flight.width)
-    # local (along, up, across) → world: along the direction, up +y, across its left
+def flight_mesh(flight: Flight) -> TriangleMesh:
+    """The flight as a watertight prism in world coordinates (y up): its side profile
+    (:func:`_profile`, in ``(along, up)``) extruded across its width."""
+    # the prism's plan (x, z) is the profile's (along, up) and its height the width
+    vertices, faces = prism(_profile(flight), 0.0, flight.width)
     dx, dz = flight.direction
     along = np.array([dx, 0.0, dz])
     up = np.array([0.0, 1.0, 0.0])
@@ -68,35 +67,28 @@ def flight_mesh(flight: Flight) -> trimesh.Trimesh:
     origin = (np.array([flight.start[0], flight.base_y, flight.start[1]])
               - across * flight.width / 2)
     matrix = np.eye(4)
-    matrix[:3, 0], matrix[:3, 1], matrix[:3, 2], matrix[:3, 3] = along, up, across, origin
-    mesh.apply_transform(matrix)
-    if np.linalg.det(matrix[:3, :3]) < 0:
-        mesh.invert()
-    return mesh
+    matrix[:3, 0], matrix[:3, 1], matrix[:3, 2], matrix[:3, 3] = along, across, up, origin
+    if np.linalg.det(matrix[:3, :3]) < 0:  # a mirroring frame turns the faces inside out
+        faces = faces[:, ::-1]
+    return TriangleMesh(transform_points(vertices, matrix), faces)
 
 
-def _box(polygon: Polygon, y_low: float, y_high: float) -> trimesh.Trimesh:
-    """A vertical prism over a plan polygon between two heights."""
-    return mass_mesh(Mass(footprint=polygon, base=y_low, height=y_high - y_low))
-
-
-def _manifold(mesh: trimesh.Trimesh) -> manifold3d.Manifold:
+def _manifold(mesh: TriangleMesh) -> manifold3d.Manifold:
     return manifold3d.Manifold(manifold3d.Mesh64(
         vert_properties=np.asarray(mesh.vertices, dtype=np.float64),
         tri_verts=np.asarray(mesh.faces, dtype=np.uint64)))
 
 
-def stair_mesh(stair: Stair) -> trimesh.Trimesh:
+def stair_mesh(stair: Stair) -> TriangleMesh:
     """The stair's flights and half landing united into one watertight solid."""
     pieces = [flight_mesh(f) for f in stair.flights]
     if stair.half_landing is not None:
         top = stair.flights[0].top_y
-        pieces.append(_box(stair.half_landing, top - stair.thickness, top))
+        pieces.append(prism_mesh(stair.half_landing, top - stair.thickness, top))
     solid = manifold3d.Manifold.batch_boolean([_manifold(p) for p in pieces],
                                               manifold3d.OpType.Add)
     out = solid.to_mesh64()
-    return trimesh.Trimesh(vertices=np.asarray(out.vert_properties)[:, :3],
-                           faces=np.asarray(out.tri_verts), process=False)
+    return TriangleMesh(np.asarray(out.vert_properties)[:, :3], np.asarray(out.tri_verts))
 
 
 def rail_footprint(stair: Stair, plan: FloorPlan) -> Polygon | None:
@@ -139,7 +131,7 @@ def stair_nodes(plan: FloorPlan) -> list[SceneNode]:
     if down is not None:
         strip = rail_footprint(down, plan)
         if strip is not None:
-            mesh = _box(strip, plan.floor_y, plan.floor_y + RAIL_HEIGHT)
+            mesh = prism_mesh(strip, plan.floor_y, plan.floor_y + RAIL_HEIGHT)
             nodes.append(SceneNode(f"floor{plan.index}/stairwell{down.id}/rail", "rail", mesh,
                                    extras={"floor": plan.index, "stair": down.id}))
     return nodes

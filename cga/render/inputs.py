@@ -19,6 +19,7 @@ import trimesh
 from shapely.geometry import Polygon
 
 from cga.errors import UsageError
+from cga.mesh import as_trimesh
 from cga.scene import Scene, SceneNode
 from cga.semantics import instance_ids, node_class
 
@@ -83,7 +84,7 @@ def _surfaces(nodes: tuple[SceneNode, ...], classes: dict[str, int], instances: 
         raise UsageError(f"the build has {len(nodes)} nodes; instance masks (16-bit) hold "
                          f"at most {MAX_INSTANCES}")
     colors = colors or {}
-    return tuple(Surface(n.path, n.kind, n.mesh, classes[n.path], instances[n.path],
+    return tuple(Surface(n.path, n.kind, as_trimesh(n.mesh), classes[n.path], instances[n.path],
                          colors[n.path] if n.path in colors else node_colors(n))
                  for n in nodes)
 

@@ -41,6 +41,7 @@ import numpy as np
 
 from cga.cache import digest, has_entry, read_entry, write_entry
 from cga.errors import CGAError, ResourceNotFoundError, excerpt
+from cga.mesh import TriangleMesh
 from cga.provenance import note_input
 from cga.resources import is_regular_file, shipped_dir
 
@@ -175,6 +176,23 @@ class ModelGeometry:
         import trimesh
 
         return cast(trimesh.Trimesh, trimesh.util.concatenate(self.parts))
+
+    @cached_property
+    def joined(self) -> TriangleMesh:
+        """All parts as one mesh, as arrays: the vertices, faces and vertex colours of
+        :attr:`mesh` (trimesh's ``util.concatenate``: parts one after another, each part's
+        faces offset by the vertices before it), made without trimesh."""
+        ends = np.cumsum([0, *(len(v) for v in self.vertices)])
+        faces = np.concatenate([np.zeros((0, 3), dtype=np.int64),
+                                *(f + start for f, start in zip(self.faces, ends))])
+        vertices = np.concatenate([np.zeros((0, 3)), *self.vertices])
+        if all(c is None for c in self.colors):
+            colors = None
+        elif all(c is not None for c in self.colors):
+            colors = np.concatenate(cast("list[np.ndarray]", list(self.colors)))
+        else:  # parts with and without colours: trimesh's defaults fill the gaps
+            colors = np.asarray(getattr(self.mesh.visual, "vertex_colors"))
+        return TriangleMesh(vertices, faces, colors)
 
 @dataclass(frozen=True, eq=False)
 class FurnitureModel:
