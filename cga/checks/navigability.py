@@ -43,7 +43,6 @@ from typing import Any, Literal
 
 import numpy as np
 import shapely
-from scipy import ndimage
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, minimum_spanning_tree
 from shapely.geometry import Point
@@ -52,7 +51,7 @@ from shapely.geometry.base import BaseGeometry
 from cga.model import OUTSIDE, Door, FloorPlan, Room, Stair
 from cga.scene import Scene, SceneNode
 
-from ._distance import disc_dilation, distance_to_false
+from ._distance import component_labels, diamond_dilation, disc_dilation, distance_to_false
 from .occupancy import OccupancyGrid, occupancy_grid
 
 __all__ = [
@@ -405,7 +404,7 @@ class _FloorCheck:
         self.drivable = self.clear >= radius
         self.drivable_bare = self._drivable(self.bare)
         self.masks = {room.id: self._room_mask(room) for room in plan.rooms}
-        self.labels = ndimage.label(self.drivable)[0]
+        self.labels = component_labels(self.drivable)
         self.reached = np.zeros(grid.shape, dtype=bool)
         self._item_masks: dict[str, np.ndarray] = {}
 
@@ -439,7 +438,7 @@ class _FloorCheck:
         if cell is not None:
             self.reached = self.labels == self.labels[cell]
             if self.drivable_as_built[cell]:
-                labels = ndimage.label(self.drivable_as_built)[0]
+                labels = component_labels(self.drivable_as_built)
                 as_built = labels == labels[cell]
         reached = self.reached
         reachable = {rid: bool((m & reached).any()) for rid, m in self.masks.items()}
@@ -623,7 +622,7 @@ class _FloorCheck:
         """Whether drivable cells cross the door's opening from one side to the other."""
         depth = self.plan.wall(door.wall).thickness + 2 * self.res
         inside = drivable & self.grid.rasterise(self._door_rect(door, -depth, depth))
-        labels, _ = ndimage.label(inside)
+        labels = component_labels(inside)
         ends = [self.grid.rasterise(self._door_rect(door, lo, hi))
                 for lo, hi in ((-depth, -depth + self.res), (depth - self.res, depth))]
         return bool(np.intersect1d(labels[ends[0] & inside], labels[ends[1] & inside]).size)
@@ -703,10 +702,10 @@ class _FloorCheck:
         strip = self.grid.rasterise(self._doorway(door, 0.0)) & self.drivable
         patch = np.isin(self.labels, np.unique(self.labels[strip]))
         reach = math.ceil(self.radius / self.res) + 1
-        near_patch = self._items_touching(ndimage.binary_dilation(patch, iterations=reach),
+        near_patch = self._items_touching(diamond_dilation(patch, reach),
                                           room_id)
         rest = self.reached & self.masks[room_id]
-        near_rest = set(self._items_touching(ndimage.binary_dilation(rest, iterations=reach),
+        near_rest = set(self._items_touching(diamond_dilation(rest, reach),
                                              room_id))
         between = [path for path in near_patch if path in near_rest]
         return between or near_patch

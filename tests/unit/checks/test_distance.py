@@ -1,6 +1,7 @@
 """Distance transforms of boolean grids (cga.checks._distance): the very numbers of
 scipy.ndimage.distance_transform_edt, on random grids and on the scipy fallback; disc
-dilations: the cells scipy's transform puts within reach."""
+dilations: the cells scipy's transform puts within reach; diamond dilations and
+component labels: scipy.ndimage's binary dilation and labelling."""
 
 from __future__ import annotations
 
@@ -11,8 +12,8 @@ from hypothesis import strategies as st
 from scipy import ndimage
 
 from cga.checks import _distance
-from cga.checks._distance import (disc_dilation, distance_to_false, squared_distance_to_false,
-                                  squared_reach)
+from cga.checks._distance import (component_labels, diamond_dilation, disc_dilation,
+                                  distance_to_false, squared_distance_to_false, squared_reach)
 
 
 def _grid(seed: int, rows: int, cols: int, density: float) -> np.ndarray:
@@ -82,3 +83,26 @@ def test_short_reach_splits_the_clearances_at_the_radius(radius, resolution):
     d2 = np.arange(0, 4 * (reach + 2) + 100)
     clearance = np.sqrt(d2.astype(np.float64)) * resolution - resolution / 2
     assert np.array_equal(clearance < radius, d2 <= reach)
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 60), cols=st.integers(1, 60),
+       density=st.sampled_from([0.0, 0.01, 0.1, 0.5, 0.97, 1.0]), steps=st.integers(1, 9))
+def test_diamond_dilation_is_scipys_binary_dilation(seed, rows, cols, density, steps):
+    mask = np.random.default_rng(seed).random((rows, cols)) >= density
+    assert np.array_equal(diamond_dilation(mask, steps),
+                          ndimage.binary_dilation(mask, iterations=steps))
+
+
+@settings(max_examples=80, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 60), cols=st.integers(1, 60),
+       density=st.sampled_from([0.0, 0.2, 0.4, 0.45, 0.6, 1.0]))
+def test_component_labels_are_scipys_pieces(seed, rows, cols, density):
+    """Same pieces as ndimage.label: two cells share a label in one exactly when they
+    share one in the other, and false cells are 0 in both."""
+    mask = np.random.default_rng(seed).random((rows, cols)) >= density
+    ours = component_labels(mask)
+    theirs, count = ndimage.label(mask)
+    assert np.array_equal(ours == 0, theirs == 0)
+    pairs = np.unique(np.column_stack([ours[mask], theirs[mask]]), axis=0)
+    assert len(pairs) == count == len(np.unique(ours[mask]))
