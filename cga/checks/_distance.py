@@ -122,9 +122,9 @@ def component_labels(mask: np.ndarray) -> np.ndarray:
 
     mask = np.asarray(mask, dtype=bool)
     flat = np.flatnonzero(mask)
-    index = np.full(mask.size, -1, dtype=np.int64)
-    index[flat] = np.arange(len(flat))
-    index = index.reshape(mask.shape)
+    numbers = np.full(mask.size, -1, dtype=np.int64)
+    numbers[flat] = np.arange(len(flat))
+    index = numbers.reshape(mask.shape)
     across = mask[:, :-1] & mask[:, 1:]
     down = mask[:-1] & mask[1:]
     u = np.concatenate([index[:, :-1][across], index[:-1][down]])
