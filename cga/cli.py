@@ -463,7 +463,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     from .collector import tune_for_building
     from .interrupts import Terminated, handle_termination
+    from .threads import one_blas_thread
 
+    one_blas_thread()  # before anything imports numpy
     tune_for_building()
     arguments = list(sys.argv[1:] if argv is None else argv)
     if arguments[:2] == ["batch", "merge"]:  # a command of batch, not a grammar named merge
