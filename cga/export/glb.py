@@ -24,12 +24,23 @@ materials (window glass) blend. Each room's ceiling lights are nodes
 
 The bytes are a pure function of the scene: nodes in the given order, no timestamps,
 extras with sorted keys. The same seed gives a byte-identical file (tested).
+
+The file is written here with numpy and :mod:`json` (glTF 2.0 §4.4: a 12-byte header, a
+JSON chunk, a BIN chunk): importing trimesh, whose exporter wrote it before, costs a third
+of a build's CPU (it loads SciPy and networkx). The document is laid out as trimesh 5.2's
+exporter (``trimesh.exchange.gltf``) laid it out, key order, accessors, buffer views,
+materials and floats, so a file is byte for byte the one trimesh wrote but for
+``asset.generator``, which names cga (and the lengths that follow from it); a file
+without meshes has no BIN chunk rather than an empty one.
 """
 
 from __future__ import annotations
 
 import hashlib
+import json
+import struct
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -50,6 +61,26 @@ _IDENTITY = np.eye(4)
 
 _PLAIN = frozenset({str, int, float, bool, type(None)})
 """Types :func:`json_safe` returns as they are."""
+
+_GENERATOR = "cga"
+"""The glTF ``asset.generator``."""
+
+_ONES = [1.0, 1.0, 1.0]
+"""Sums the rows of a ``float[n, 3]`` as trimesh sums them, ``np.dot`` with ones (BLAS):
+the very call, so the rounding is trimesh's whatever order the BLAS kernel adds in."""
+
+_ZERO = float(np.finfo(np.float64).resolution * 100)
+"""A vector no longer than this has no direction (trimesh's ``util.TOL_ZERO``)."""
+
+_FLAT_ANGLE = 1e-8
+"""A triangle with a corner angle (radians) below this is degenerate and weighs nothing in
+its vertices' normals (trimesh's ``tol.merge``)."""
+
+_TRIANGLES = 4
+"""glTF primitive mode: a triangle list."""
+
+_FLOAT, _UNSIGNED_INT, _UNSIGNED_BYTE = 5126, 5125, 5121
+"""glTF accessor component types."""
 
 
 def json_safe(value: Any) -> Any:
@@ -131,35 +162,59 @@ def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Mat
     return digest.digest(), node.materials
 
 
-def _local_meshes(node: SceneNode, vertices: np.ndarray, normals: np.ndarray,
-                  looks: _Looks) -> list[Any]:
-    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`) with their
-    ``normals`` (:func:`_vertex_normals`), without metadata (which trimesh would write as
-    mesh extras): one mesh per material of the node (:attr:`SceneNode.materials`), each
-    with its PBR material, which become the primitives of one glTF mesh. A node without
-    materials (not dressed) keeps its own colours, or gets its kind's colour."""
-    import trimesh
+@dataclass(frozen=True, eq=False, slots=True)
+class _Primitive:
+    """A primitive of a glTF mesh: local ``vertices``, ``faces`` indexing them, the unit
+    ``normals`` of the vertices, and its look: RGBA ``colors`` per vertex (a mesh's own
+    colours), else the index of its ``material`` in the document."""
 
-    source = node.mesh
-    faces = np.asarray(source.faces, dtype=np.int64)
+    vertices: np.ndarray
+    faces: np.ndarray
+    normals: np.ndarray
+    colors: np.ndarray | None
+    material: int | None
+
+
+def _primitives(node: SceneNode, vertices: np.ndarray, normals: np.ndarray,
+                gltf: _Gltf) -> list[_Primitive]:
+    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`) with their
+    ``normals``: one primitive per material of the node (:attr:`SceneNode.materials`)
+    that has triangles. A node without materials (not dressed) is one primitive of its
+    own vertex colours (:func:`_own_colors`), else of its kind's material. A mesh without
+    triangles has no primitives (and the node no mesh)."""
+    faces = np.asarray(node.mesh.faces, dtype=np.int64)
     if not node.materials or node.face_materials is None:
-        visual = source.visual
-        if visual is None or visual.kind is None:
-            visual = looks.visual(kind_material(node.kind))
-        else:
-            visual = visual.copy()
-        return [trimesh.Trimesh(vertices=vertices, faces=faces, vertex_normals=normals,
-                                visual=visual, process=False)]
+        if not len(faces):
+            return []
+        colors = _own_colors(node.mesh, len(vertices))
+        look = None if colors is not None else gltf.material(kind_material(node.kind))
+        return [_Primitive(vertices, faces, normals, colors, look)]
     pieces = []
     for k, material in enumerate(node.materials):
         chosen = faces[node.face_materials == k]
         if not len(chosen):
             continue
         used, local = _compact(chosen, len(vertices))
-        pieces.append(trimesh.Trimesh(vertices=vertices[used], faces=local,
-                                      vertex_normals=normals[used],
-                                      visual=looks.visual(material), process=False))
+        pieces.append(_Primitive(vertices[used], local, normals[used], None,
+                                 gltf.material(material)))
     return pieces
+
+
+def _own_colors(mesh: Any, count: int) -> np.ndarray | None:
+    """A mesh's own RGBA colours of its ``count`` vertices (``uint8[count, 4]``), None when
+    it has none: a :class:`cga.mesh.TriangleMesh`'s ``vertex_colors``, or the vertex (or
+    face) colours of a trimesh object's visual (a textured visual's material is not
+    kept). Only an object of trimesh's own is asked for its visual: any other attribute
+    of a TriangleMesh would make a trimesh object and import trimesh (:mod:`cga.mesh`)."""
+    if type(mesh).__module__.startswith("trimesh"):
+        visual = getattr(mesh, "visual", None)
+        colors = visual.vertex_colors if visual is not None and visual.kind in (
+            "vertex", "face") else None
+    else:
+        colors = getattr(mesh, "vertex_colors", None)
+    if colors is None or len(colors) != count:
+        return None
+    return np.asarray(colors, dtype=np.uint8)
 
 
 def _compact(faces: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
@@ -171,49 +226,53 @@ def _compact(faces: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
     return np.flatnonzero(used), renumbered[faces]
 
 
-class _Looks:
-    """The glTF metallic-roughness material of each :class:`Material`, made once per file
-    and shared by every primitive that wears it (trimesh writes equal materials once)."""
+def _unitize(vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each row of ``vectors`` (``float[n, 3]``) at unit length, and which rows have a
+    length (longer than :data:`_ZERO`; the others are returned as they are): trimesh's
+    ``util.unitize``, its operations in its order, so the floats are its own."""
+    norm = np.sqrt(np.dot(vectors * vectors, _ONES))
+    valid = norm > _ZERO
+    norm[valid] **= -1
+    return vectors * norm.reshape((-1, 1)), valid
 
-    def __init__(self) -> None:
-        self._made: dict[Material, Any] = {}
 
-    def visual(self, material: Material) -> Any:
-        """A trimesh visual carrying ``material``."""
-        import trimesh
-        from trimesh.visual.material import PBRMaterial
-
-        pbr = self._made.get(material)
-        if pbr is None:
-            pbr = self._made[material] = PBRMaterial(
-                name=material.name, baseColorFactor=material.linear_rgba(),
-                metallicFactor=material.metallic, roughnessFactor=material.roughness,
-                alphaMode="BLEND" if material.transparent else None,
-                doubleSided=material.transparent)
-        return trimesh.visual.TextureVisuals(material=pbr)
+def _corner_angles(corners: np.ndarray) -> np.ndarray:
+    """The angle (radians) at each corner of each triangle (``float[m, 3, 3]`` corners),
+    all three zero for a triangle with a (nearly) zero angle: trimesh's
+    ``triangles.angles``."""
+    u = _unitize(corners[:, 1] - corners[:, 0])[0]
+    v = _unitize(corners[:, 2] - corners[:, 0])[0]
+    w = _unitize(corners[:, 2] - corners[:, 1])[0]
+    angles = np.zeros((len(corners), 3))
+    angles[:, 0] = np.arccos(np.clip(np.dot(u * v, _ONES), -1, 1))
+    angles[:, 1] = np.arccos(np.clip(np.dot(-u * w, _ONES), -1, 1))
+    angles[:, 2] = np.pi - angles[:, 0] - angles[:, 1]
+    angles[(angles < _FLAT_ANGLE).any(axis=1), :] = 0.0
+    return angles
 
 
 def _vertex_normals(meshes: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[np.ndarray]:
-    """Unit normals of the vertices of each mesh ``(vertices, faces)``: trimesh's mean of
-    the normals of the faces around each vertex weighted by their corner angles
-    (Thürrner & Wüthrich 1998, :func:`trimesh.geometry.weighted_vertex_normals`).
+    """Unit normals of the vertices of each mesh ``(vertices, faces)``: the mean of the
+    normals of the faces around each vertex weighted by their corner angles (Thürrner &
+    Wüthrich 1998), as trimesh's ``Trimesh.vertex_normals`` computes it
+    (``geometry.weighted_vertex_normals``), bit for bit: the same unit face normals and
+    corner angles (:func:`_unitize`, :func:`_corner_angles`), each vertex's sum taken over
+    its faces in ascending order from zero (trimesh's sparse product adds them in that
+    order; :func:`numpy.bincount` adds its weights in order too), then made unit.
 
-    All meshes go through trimesh's functions at once, as one mesh of separate pieces:
-    a vertex's sum runs over the faces of its own mesh in the same order as for that mesh
-    alone (and every other step works face by face or vertex by vertex), so each mesh
-    gets the very normals it would get alone, for one sparse product instead of one per
-    mesh and no trimesh object, whose caching costs more than the sums.
+    All meshes are summed at once, as one mesh of separate pieces: a vertex's sum runs
+    over the faces of its own mesh in the same order as for that mesh alone, and every
+    other step works face by face or vertex by vertex, so each mesh gets the very normals
+    it would get alone.
 
-    A vertex whose mean has (nearly) zero length takes the normal of one of its faces
-    that has one (else +y). A vertex where faces facing opposite ways meet (a stair's
-    tread edge on its landing) averages to nothing, and one of only degenerate
+    A vertex whose mean has (nearly) zero length takes the normal of the last of its
+    faces that has one (else +y). A vertex where faces facing opposite ways meet (a
+    stair's tread edge on its landing) averages to nothing, and one of only degenerate
     (zero-area) triangles has no normal at all, which glTF forbids (the Khronos
-    validator's ACCESSOR_VECTOR3_NON_UNIT)."""
-    from trimesh import geometry, triangles
-
+    validator's ACCESSOR_VECTOR3_NON_UNIT). The vertices of a mesh without faces keep
+    zero normals (such a mesh is not written)."""
     counts = [len(vertices) for vertices, _ in meshes]
     starts = np.cumsum([0, *counts])
-    face_starts = np.cumsum([0, *(len(np.reshape(f, (-1, 3))) for _, f in meshes)])
     vertices = np.concatenate([np.zeros((0, 3)), *(v for v, _ in meshes)])
     faces = np.concatenate([np.zeros((0, 3), dtype=np.int64),
                             *(np.reshape(f, (-1, 3)) + start
@@ -221,48 +280,229 @@ def _vertex_normals(meshes: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[np.
     normals = np.zeros((len(vertices), 3))
     if len(faces):
         corners = vertices[faces]
-        unit, valid = triangles.normals(triangles=corners, crosses=triangles.cross(corners))
-        face_normals = unit
-        if not valid.all():  # degenerate triangles: zero normals, as trimesh pads them
-            face_normals = np.zeros((len(faces), 3))
-            face_normals[valid] = unit
-        normals = geometry.weighted_vertex_normals(
-            vertex_count=len(vertices), faces=faces, face_normals=face_normals,
-            face_angles=triangles.angles(corners))
-    out = [normals[a:b] for a, b in zip(starts[:-1], starts[1:])]
-    for k, own in enumerate(out):
-        flat = np.linalg.norm(own, axis=1) < 0.5
-        if flat.any() and face_starts[k + 1] > face_starts[k]:
-            own_faces = faces[face_starts[k]:face_starts[k + 1]] - starts[k]
-            around = geometry.vertex_face_indices(
-                len(own), own_faces, geometry.index_sparse(len(own), own_faces))[flat]
-            candidates = np.vstack([face_normals[face_starts[k]:face_starts[k + 1]],
-                                    [[0.0, 0.0, 0.0]]])[around]  # -1 picks the zero row
-            usable = np.linalg.norm(candidates, axis=2) > 0.5
-            chosen = candidates[np.arange(len(around)), np.argmax(usable, axis=1)]
-            chosen[~usable.any(axis=1)] = (0.0, 1.0, 0.0)
-            own[flat] = chosen
-    return out
+        edges = corners[:, 1:] - corners[:, :2]
+        face_normals, valid = _unitize(np.cross(edges[:, 0], edges[:, 1]))
+        face_normals[~valid] = 0.0  # degenerate triangles: zero normals, as trimesh's
+        counted = (face_normals ** 2).sum(axis=1) > 0.5
+        angles = _corner_angles(corners)[counted]
+        terms = (angles[:, :, None] * face_normals[counted][:, None, :]).reshape(-1, 3)
+        around = faces[counted].ravel()
+        sums = np.column_stack([np.bincount(around, weights=terms[:, axis],
+                                            minlength=len(vertices)) for axis in range(3)])
+        normals = _unitize(sums)[0]
+        flat = np.linalg.norm(normals, axis=1) < 0.5
+        if flat.any():
+            has_faces = np.repeat([np.size(f) > 0 for _, f in meshes], counts)
+            _face_normal_where_flat(normals, flat & has_faces, faces, face_normals)
+    return [normals[a:b] for a, b in zip(starts[:-1], starts[1:])]
 
 
-def _mesh_key(meshes: Sequence[Any]) -> str:
-    """A digest of the primitives of a glTF mesh: their vertices, faces and colours
-    (vertex colours, or their material's name and base colour)."""
+def _face_normal_where_flat(normals: np.ndarray, flat: np.ndarray, faces: np.ndarray,
+                            face_normals: np.ndarray) -> None:
+    """Give each ``flat`` vertex the normal of the last of its ``faces`` that has one,
+    else +y, in place. The last: the face the trimesh-based writer took, the first with a
+    normal of those trimesh's ``geometry.vertex_face_indices`` lists for the vertex, in
+    descending order."""
+    corner_faces = np.repeat(np.arange(len(faces)), 3)
+    corners = faces.ravel()
+    usable = np.linalg.norm(face_normals, axis=1) > 0.5
+    keep = usable[corner_faces] & flat[corners]
+    last = np.full(len(normals), -1)
+    np.maximum.at(last, corners[keep], corner_faces[keep])
+    normals[flat] = np.where((last[flat] >= 0)[:, None], face_normals[last[flat]],
+                             (0.0, 1.0, 0.0))
+
+
+def _mesh_key(primitives: Sequence[_Primitive]) -> str:
+    """A digest of the primitives of a glTF mesh: their vertices, faces and looks
+    (vertex colours, or material)."""
     digest = hashlib.sha1()
-    for mesh in meshes:
-        digest.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
-        digest.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
-        visual = mesh.visual
-        if visual.kind == "vertex":
-            digest.update(np.ascontiguousarray(visual.vertex_colors).tobytes())
+    for primitive in primitives:
+        digest.update(np.ascontiguousarray(primitive.vertices, dtype=np.float64).tobytes())
+        digest.update(np.ascontiguousarray(primitive.faces, dtype=np.int64).tobytes())
+        if primitive.colors is not None:
+            digest.update(b"colors" + np.ascontiguousarray(primitive.colors).tobytes())
         else:
-            material = visual.material
-            base = getattr(material, "baseColorFactor", None)
-            digest.update(repr((getattr(material, "name", None),
-                                None if base is None else (str(np.asarray(base).dtype),
-                                                          np.asarray(base).tolist()))
-                               ).encode())
+            digest.update(f"material {primitive.material}".encode())
     return digest.hexdigest()
+
+
+class _Gltf:
+    """A glTF document being written: nodes, meshes, materials, accessors and the bytes
+    of its one buffer, laid out as trimesh's exporter laid them out (module notes).
+
+    Equal data is stored once: arrays of equal bytes share a buffer view, equal arrays in
+    the same role share an accessor, equal materials are one material, and equal meshes
+    (:func:`_mesh_key`) are one mesh. Each array is padded to 4 bytes in the buffer."""
+
+    def __init__(self) -> None:
+        self._nodes: dict[str, dict[str, Any]] = {}
+        self._parents: dict[str, str] = {}
+        self._meshes: list[dict[str, Any]] = []
+        self._mesh_index: dict[str, int] = {}  # _mesh_key → mesh
+        self._mesh_names: set[str] = set()
+        self._materials: list[dict[str, Any]] = []
+        self._material_index: dict[Material, int] = {}
+        self._material_written: dict[str, int] = {}  # material JSON → material
+        self._accessors: list[dict[str, Any]] = []
+        self._accessor_index: dict[tuple[str, bytes], int] = {}
+        self._views: list[dict[str, Any]] = []
+        self._view_index: dict[bytes, int] = {}
+        self._chunks: list[bytes] = []
+        self._length = 0
+
+    def node(self, name: str, parent: str | None, extras: dict[str, Any],
+             matrix: np.ndarray | None = None, mesh: int | None = None,
+             extensions: dict[str, Any] | None = None) -> None:
+        """Add the node ``name`` under ``parent`` (None: the scene's root), or give the
+        node of that name these contents when there is one (a group whose path turns out
+        to be a scene node's too). A matrix within 1e-8 of the identity (by trimesh's
+        measure: the spread of the difference) is not written."""
+        node = self._nodes.setdefault(name, {})
+        if parent is not None:
+            self._parents[name] = parent
+        if mesh is not None:
+            node["mesh"] = mesh
+        near = matrix is None or float(np.ptp(matrix - _IDENTITY)) < 1e-8
+        node["matrix"] = None if near else np.asarray(matrix, dtype=np.float64).T.ravel().tolist()
+        node["extensions"] = extensions
+        node["extras"] = extras
+
+    def material(self, material: Material) -> int:
+        """The index of ``material`` as a glTF metallic-roughness material, written on
+        first use. The base colour is stored in 1/255 steps, as trimesh stored it (as an
+        8-bit colour); materials whose glTF forms are equal are written once."""
+        index = self._material_index.get(material)
+        if index is None:
+            rgba = np.asarray(material.linear_rgba(), dtype=np.float64)
+            rgba[~np.isfinite(rgba)] = 0.0
+            steps = np.clip(rgba * 255, 0.0, 255).round().astype(np.uint8)
+            written: dict[str, Any] = {"pbrMetallicRoughness": {
+                "baseColorFactor": (steps.astype(np.float64) / 255).tolist(),
+                "roughnessFactor": float(material.roughness),
+                "metallicFactor": float(material.metallic)}, "name": material.name}
+            if material.transparent:
+                written["alphaMode"] = "BLEND"
+            written["doubleSided"] = bool(material.transparent)
+            index = self._material_written.setdefault(json.dumps(written), len(self._materials))
+            if index == len(self._materials):
+                self._materials.append(written)
+            self._material_index[material] = index
+        return index
+
+    def mesh(self, name: str, primitives: Sequence[_Primitive]) -> int | None:
+        """The index of the mesh of ``primitives``, written (named ``name``, or
+        ``name#<n>`` when another mesh has that name) unless an equal one was; None
+        without primitives."""
+        if not primitives:
+            return None
+        key = _mesh_key(primitives)
+        index = self._mesh_index.get(key)
+        if index is None:
+            if name in self._mesh_names:
+                name = f"{name}#{len(self._mesh_index)}"
+            self._mesh_names.add(name)
+            index = self._mesh_index[key] = len(self._meshes)
+            self._meshes.append({"name": name, "extras": {},
+                                 "primitives": [self._primitive(p) for p in primitives]})
+        return index
+
+    def _primitive(self, primitive: _Primitive) -> dict[str, Any]:
+        """A primitive's glTF form, its arrays stored (indices, positions, colours,
+        normals: trimesh's order, as are the keys of each accessor)."""
+        indices = self._accessor("indices", {"componentType": _UNSIGNED_INT, "type": "SCALAR"},
+                                 primitive.faces.astype("<u4"))
+        attributes = {"POSITION": self._accessor(
+            "position", {"componentType": _FLOAT, "type": "VEC3", "byteOffset": 0},
+            primitive.vertices.astype("<f4"))}
+        if primitive.colors is not None:
+            attributes["COLOR_0"] = self._accessor(
+                "color", {"componentType": _UNSIGNED_BYTE, "normalized": True, "type": "VEC4",
+                          "byteOffset": 0}, primitive.colors.astype("<u1"))
+        attributes["NORMAL"] = self._accessor(
+            "normal", {"componentType": _FLOAT, "count": len(primitive.normals), "type": "VEC3",
+                       "byteOffset": 0}, primitive.normals.astype("<f4"))
+        out: dict[str, Any] = {"attributes": attributes, "indices": indices, "mode": _TRIANGLES}
+        if primitive.material is not None:
+            out["material"] = primitive.material
+        return out
+
+    def _accessor(self, role: str, blob: dict[str, Any], data: np.ndarray) -> int:
+        """The index of the accessor of ``data`` in ``role`` (``blob`` its type), made
+        with its count, bounds and buffer view unless an equal one was."""
+        raw = data.tobytes()
+        index = self._accessor_index.get((role, raw))
+        if index is None:
+            blob["bufferView"] = self._view(raw)
+            if blob["type"] == "SCALAR":
+                blob["count"] = int(data.size)
+                blob["max"] = [int(data.max())]
+                blob["min"] = [int(data.min())]
+            else:
+                rows = data.reshape(-1, int(blob["type"][-1]))
+                blob["count"] = len(rows)
+                blob["max"] = rows.max(axis=0).tolist()
+                blob["min"] = rows.min(axis=0).tolist()
+            index = self._accessor_index[(role, raw)] = len(self._accessors)
+            self._accessors.append(blob)
+        return index
+
+    def _view(self, raw: bytes) -> int:
+        """The index of the buffer view of ``raw``, appended (padded to 4 bytes) unless
+        equal bytes were."""
+        index = self._view_index.get(raw)
+        if index is None:
+            padded = raw + bytes(-len(raw) % 4)
+            index = self._view_index[raw] = len(self._views)
+            self._views.append({"buffer": 0, "byteOffset": self._length,
+                                "byteLength": len(padded)})
+            self._chunks.append(padded)
+            self._length += len(padded)
+        return index
+
+    def glb(self, extras: dict[str, Any], lights: list[dict[str, Any]]) -> bytes:
+        """The binary glTF file: the document with the scene's ``extras`` and its
+        ``KHR_lights_punctual`` ``lights``, its JSON padded with spaces so the BIN chunk
+        starts on 4 bytes. A document without meshes has no BIN chunk (trimesh wrote an
+        empty one, which the Khronos validator notes should be omitted)."""
+        number = {name: k for k, name in enumerate(self._nodes)}
+        children: dict[str, list[int]] = {}
+        for name, parent in self._parents.items():
+            children.setdefault(parent, []).append(number[name])
+        nodes = []
+        for name, contents in self._nodes.items():
+            node: dict[str, Any] = {"name": name}
+            if name in children:
+                node["children"] = children[name]
+            if contents.get("mesh") is not None:
+                node["mesh"] = contents["mesh"]
+            for key in ("matrix", "extensions", "extras"):
+                if contents.get(key):
+                    node[key] = contents[key]
+            nodes.append(node)
+        tree: dict[str, Any] = {
+            "scene": 0, "scenes": [{"extras": extras, "nodes": [0]}],
+            "asset": {"version": "2.0", "generator": _GENERATOR}}
+        if self._meshes:
+            tree["accessors"] = self._accessors
+            tree["meshes"] = self._meshes
+        if self._materials:
+            tree["materials"] = self._materials
+        tree["nodes"] = nodes
+        if lights:
+            tree["extensionsUsed"] = ["KHR_lights_punctual"]
+        if self._length:
+            tree["buffers"] = [{"byteLength": self._length}]
+            tree["bufferViews"] = self._views
+        if lights:
+            tree["extensions"] = {"KHR_lights_punctual": {"lights": lights}}
+        content = json.dumps(tree, separators=(",", ":")).encode("ascii")
+        content += b" " * (4 - (len(content) + 20) % 4)
+        binary = ([struct.pack("<2I", self._length, 0x004E4942), *self._chunks]  # "BIN"
+                  if self._length else [])
+        header = struct.pack("<5I", 0x46546C67, 2, 20 + len(content) + sum(map(len, binary)),
+                             len(content), 0x4E4F534A)  # "glTF", version, length; "JSON"
+        return b"".join([header, content, *binary])
 
 
 def _group_extras(scene: Scene) -> dict[str, dict[str, Any]]:
@@ -291,21 +531,14 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     ExportError
         Two nodes share a path, or a node's extras cannot be stored as JSON.
     """
-    import trimesh
-
     root = scene.name
-    # the base frame has one child, the building node, so it is not written: the glTF
-    # scene's one root is the building
-    tm_scene = trimesh.Scene(base_frame="world")
-    tm_scene.graph.update(frame_from="world", frame_to=root, matrix=np.eye(4),
-                          metadata=json_safe({"kind": "building", "name": scene.name,
-                                              "seed": scene.seed}))
+    gltf = _Gltf()
+    gltf.node(root, None, json_safe({"kind": "building", "name": scene.name,
+                                     "seed": scene.seed}))
     groups = _group_extras(scene)
     made: set[str] = set()
     seen: set[str] = set()
-    meshes: dict[str, str] = {}  # mesh digest (_mesh_key) → geometry name
-    made_from: dict[tuple[bytes, tuple[Material, ...]], str] = {}  # _source_key → name
-    looks = _Looks()
+    made_from: dict[tuple[bytes, tuple[Material, ...]], int | None] = {}  # _source_key → mesh
     instances = instance_ids(nodes)
     names = class_names()
     pivots = [node_pivot(node) for node in nodes]
@@ -318,7 +551,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     normals = dict(zip(meshed, _vertex_normals(
         [(local[i], np.asarray(nodes[i].mesh.faces, dtype=np.int64)) for i in meshed])))
     for i, node in enumerate(nodes):
-        if node.path in seen or node.path in (root, "world"):
+        if node.path in seen or node.path == root:
             raise ExportError(f"two scene nodes are both named {node.path!r}")
         seen.add(node.path)
         try:
@@ -328,97 +561,54 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
                                 "instance_id": instances[node.path]})
         except TypeError as error:
             raise ExportError(f"node {node.path!r}: {error}") from None
-        parent = _parent(tm_scene, node.path, root, groups, made)
+        parent = _parent(gltf, node.path, root, groups, made)
         source = sources[i]
-        name = made_from.get(source) if source is not None else None
-        if name is None:
-            pieces = _local_meshes(node, local[i], normals[i], looks)
-            key = _mesh_key(pieces)
-            if key not in meshes:
-                base = node.item.model if node.item is not None else node.path
-                meshes[key] = base if base not in tm_scene.geometry else f"{base}#{len(meshes)}"
-                tm_scene.geometry[meshes[key]] = pieces[0]
-                for k, piece in enumerate(pieces[1:], start=1):
-                    tm_scene.geometry[f"{meshes[key]}{_PRIMITIVE}{k}"] = piece
-            name = meshes[key]
+        if source is not None and source in made_from:
+            mesh = made_from[source]
+        else:
+            # made unit once more, as trimesh's exporter did: that moves a fifth of the
+            # float64s by an ulp, which could (in the demos never did) move a float32
+            primitives = _primitives(node, local[i], _unitize(normals[i])[0], gltf)
+            mesh = gltf.mesh(node.item.model if node.item is not None else node.path,
+                             primitives)
             if source is not None:
-                made_from[source] = name
-        tm_scene.graph.update(frame_from=parent, frame_to=node.path, matrix=pivots[i],
-                              geometry=name, metadata=extras)
+                made_from[source] = mesh
+        gltf.node(node.path, parent, extras, matrix=pivots[i], mesh=mesh)
         made.add(node.path)
-    lights = _add_lights(tm_scene, scene, root, groups, made)
-    tm_scene.metadata.update(json_safe({"generator": "cga", "name": scene.name,
-                                        "seed": scene.seed, "units": "metres", "up": "y"}))
-    return tm_scene.export(file_type="glb", include_normals=True, unitize_normals=True,
-                           tree_postprocessor=lambda tree: _finish_tree(tree, lights))
+    lights = _add_lights(gltf, scene, root, groups, made)
+    return gltf.glb(json_safe({"generator": "cga", "name": scene.name, "seed": scene.seed,
+                               "units": "metres", "up": "y"}), lights)
 
 
-_PRIMITIVE = "@"
-"""Joins a mesh's name and the number of its further primitive: trimesh writes one glTF
-mesh per geometry, so a node's further materials are geometries ``<mesh>@1``, ... that
-:func:`_finish_tree` moves into the node's mesh as primitives."""
-
-
-def _add_lights(tm_scene: Any, scene: Scene, root: str, groups: Mapping[str, dict[str, Any]],
+def _add_lights(gltf: _Gltf, scene: Scene, root: str, groups: Mapping[str, dict[str, Any]],
                 made: set[str]) -> list[dict[str, Any]]:
     """A node per ceiling light (``floor0/room3_Office/light0``) under its room, pointing
     at its ``KHR_lights_punctual`` light; returns the lights' definitions."""
     out = []
     for k, light in enumerate(scene.lights):
-        parent = _parent(tm_scene, light.name, root, groups, made)
+        parent = _parent(gltf, light.name, root, groups, made)
         matrix = np.eye(4)
         matrix[:3, 3] = light.position
         extras = json_safe({"kind": "light", "floor": light.floor, "room": light.room,
                             "lumens": light.lumens, "temperature": light.temperature})
-        extras["gltf_extensions"] = {"KHR_lights_punctual": {"light": k}}
-        tm_scene.graph.update(frame_from=parent, frame_to=light.name, matrix=matrix,
-                              metadata=extras)
-        out.append({"name": light.name, "type": "point", "color": list(light.color),
-                    "intensity": round(light.intensity, 6)})
+        gltf.node(light.name, parent, extras, matrix=matrix,
+                  extensions={"KHR_lights_punctual": {"light": k}})
+        out.append({"name": light.name, "type": "point", "color": json_safe(list(light.color)),
+                    "intensity": json_safe(round(light.intensity, 6))})
     return out
 
 
-def _finish_tree(tree: dict[str, Any], lights: list[dict[str, Any]]) -> None:
-    """Join each node's further primitives into its mesh (see :data:`_PRIMITIVE`) and
-    declare the lights (glTF ``KHR_lights_punctual``)."""
-    meshes = tree.get("meshes", [])
-    index = {m.get("name"): k for k, m in enumerate(meshes)}
-    moved: dict[int, int] = {}
-    for k, mesh in enumerate(meshes):
-        name = str(mesh.get("name", ""))
-        head, sep, tail = name.rpartition(_PRIMITIVE)
-        if sep and tail.isdigit() and head in index:
-            meshes[index[head]]["primitives"].extend(mesh["primitives"])
-            moved[k] = index[head]
-    if moved:
-        kept = [k for k in range(len(meshes)) if k not in moved]
-        new = {old: new for new, old in enumerate(kept)}
-        tree["meshes"] = [meshes[k] for k in kept]
-        for node in tree.get("nodes", []):
-            if "mesh" in node:
-                node["mesh"] = new[node["mesh"]]
-    if lights:
-        tree.setdefault("extensions", {})["KHR_lights_punctual"] = {"lights": lights}
-        used = set(tree.get("extensionsUsed", [])) | {"KHR_lights_punctual"}
-        tree["extensionsUsed"] = sorted(used)
-
-
-def _parent(tm_scene: Any, path: str, root: str, groups: Mapping[str, dict[str, Any]],
+def _parent(gltf: _Gltf, path: str, root: str, groups: Mapping[str, dict[str, Any]],
             made: set[str]) -> str:
-    """The group node above ``path``, made (with its own ancestors) when missing.
-
-    ``made`` holds the groups made so far: asking trimesh's graph for its nodes instead
-    re-hashes every transform after each update, quadratic in the scene's nodes (a
-    300 m lot's glb took minutes)."""
+    """The group node above ``path``, made (with its own ancestors) when missing; ``made``
+    holds the groups and nodes made so far."""
     parent = root
     parts = path.split("/")
     for depth in range(1, len(parts)):
         group = "/".join(parts[:depth])
         if group not in made:
             made.add(group)
-            extras = groups.get(group, {"kind": "group"})
-            tm_scene.graph.update(frame_from=parent, frame_to=group, matrix=np.eye(4),
-                                  metadata=json_safe(extras))
+            gltf.node(group, parent, json_safe(groups.get(group, {"kind": "group"})))
         parent = group
     return parent
 

@@ -97,8 +97,8 @@ def test_a_mesh_shared_by_instances_is_made_once_and_writes_the_same_bytes(glb, 
 
     scene, nodes, data, doc = glb
     made = []
-    original = glb_module._local_meshes
-    monkeypatch.setattr(glb_module, "_local_meshes",
+    original = glb_module._primitives
+    monkeypatch.setattr(glb_module, "_primitives",
                         lambda node, *rest: made.append(node.path) or original(node, *rest))
     assert scene_as_glb(scene, nodes) == data
     items = [n for n in nodes if n.kind == "furniture"]
