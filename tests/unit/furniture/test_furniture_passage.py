@@ -88,9 +88,9 @@ def test_a_candidate_asked_again_is_looked_up_for_its_own_obstacles(monkeypatch)
     passage = Passage(ROOM, [BOTTOM, TOP], 0.6)
     left, right = (0.0, 1.8, 2.6, 2.4), (2.9, 1.8, 5.0, 2.4)  # a row with a 0.3 m gap
     computed = []
-    verdict = Passage._verdict
-    monkeypatch.setattr(Passage, "_verdict",
-                        lambda self, floor: computed.append(1) or verdict(self, floor))
+    verdict = Passage._candidate_verdict
+    monkeypatch.setattr(Passage, "_candidate_verdict",
+                        lambda self, *args: computed.append(1) or verdict(self, *args))
     assert passage.blockage([], left) is None
     assert passage.blockage([], left) is None
     assert len(computed) == 1
