@@ -366,7 +366,7 @@ class Passage:
         if found is None:
             found = []
             shape = shapely.box(*box)
-            if not shapely.contains_properly(self.floor, shape):
+            if not self.floor.contains_properly(shape):
                 for node, around in enumerate(self._around):
                     parts = shapely.get_parts(shapely.intersection(around, shape))
                     joined = _components(len(parts), _touching_pairs(parts))
@@ -451,6 +451,25 @@ class Passage:
         if len(kept) == 1 and all(meets[0]):  # the usual case: nothing cut off
             return None
         areas = [pieces.areas[k] for k in kept]
+        if self.groups:
+            cut_off = self._door_cut_off(meets, areas, sure)
+            if cut_off is not None:
+                return cut_off
+        total = sum(areas)
+        reached_area = sum(area for row, area in zip(meets, areas) if any(row))
+        limit = self.min_share * total - _AREA_EPS
+        if sure and abs(reached_area - limit) <= 2 * sure:
+            return _UNSURE
+        if reached_area < limit:
+            share = 1 - reached_area / total
+            if sure and abs(share * 100 % 1 - 0.5) <= 200 * sure / total:
+                return _UNSURE
+            return Blockage("pocket", f"{share:.0%}")
+        return None
+
+    def _door_cut_off(self, meets: list[list[bool]], areas: list[float],
+                      sure: float) -> Blockage | None:
+        """Rule 1 on pieces meeting the approaches ``meets`` with ``areas``."""
         doors = range(len(self.labels))
         reached = [any(row[k] for row in meets) for k in doors]
         pairs: list[tuple[int, int]] = []  # a door joins the pieces its approach meets
@@ -476,16 +495,6 @@ class Passage:
             main = max(classes, key=lambda c: (class_area[c], -c), default=-1)
             cut = next(k for k in group if not reached[k] or name[k] != main)
             return Blockage("door", self.labels[cut])
-        total = sum(areas)
-        reached_area = sum(area for _, area in touched)
-        limit = self.min_share * total - _AREA_EPS
-        if sure and abs(reached_area - limit) <= 2 * sure:
-            return _UNSURE
-        if reached_area < limit:
-            share = 1 - reached_area / total
-            if sure and abs(share * 100 % 1 - 0.5) <= 200 * sure / total:
-                return _UNSURE
-            return Blockage("pocket", f"{share:.0%}")
         return None
 
 
