@@ -340,19 +340,31 @@ class Layout:
         return zones
 
     def _blocking_hits(self, index: ObstacleIndex, spec: ItemSpec, part_rows: np.ndarray,
-                       rows: np.ndarray, related: frozenset[str]) -> list[tuple[int, int]]:
+                       rows: np.ndarray, related: frozenset[str], *, first: bool = False
+                       ) -> list[tuple[int, int]]:
         """The hits ``(part_rows, rows)`` that block ``spec`` (docs/furniture.md), as
-        ``(row, part)`` by row, then part: numpy for many hits (a crowded room), a plain
-        loop for the few of an ordinary room, where numpy's cost per call dominates."""
+        ``(row, part)`` by row, then part (with ``first``, the first of them only):
+        numpy for many hits (a crowded room), a plain loop for the few of an ordinary
+        room, where numpy's cost per call dominates."""
+        if len(rows) > _FEW_HITS:
+            rows, part_rows = self._blocking_rows(index, spec, part_rows, rows, related)
+            keys = rows * _MAX_PARTS + part_rows
+            order = (keys.min(keepdims=True) if first and len(keys) else np.sort(keys))
+            return [divmod(k, _MAX_PARTS) for k in order.tolist()]
         owner = self._ids.get(spec.name, -1)
         family = [self._ids[n] for n in related if n in self._ids]
         non_collision = spec.rule.non_collision
-        if len(rows) > _FEW_HITS:
-            blocking = index.blocking(rows, part_rows == 0, owner, non_collision, family)
-            order = np.sort(rows[blocking] * _MAX_PARTS + part_rows[blocking]).tolist()
-            return [divmod(k, _MAX_PARTS) for k in order]
         return sorted((row, part) for part, row in zip(part_rows.tolist(), rows.tolist())
                       if index.blocks(row, part == 0, owner, non_collision, family))
+
+    def _blocking_rows(self, index: ObstacleIndex, spec: ItemSpec, part_rows: np.ndarray,
+                       rows: np.ndarray, related: frozenset[str]
+                       ) -> tuple[np.ndarray, np.ndarray]:
+        """The hits that block ``spec`` among many, ``(rows, part_rows)`` in query order."""
+        blocking = index.blocking(rows, part_rows == 0, self._ids.get(spec.name, -1),
+                                  spec.rule.non_collision,
+                                  [self._ids[n] for n in related if n in self._ids])
+        return rows[blocking], part_rows[blocking]
 
     # -- queries -------------------------------------------------------------------------
     def conflicts(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset(),
@@ -365,9 +377,10 @@ class Layout:
         parts = spec.parts(pose.rotation)
         geometries = _part_shapes(spec.boxes(pose.rotation), pose)
         found: list[Conflict] = []
-        part_rows, rows = index.hits(geometries)
+        part_rows, rows = index.hits(geometries, boxes=not pose.yaw)
         if len(rows):
-            for row, part in self._blocking_hits(index, spec, part_rows, rows, related):
+            for row, part in self._blocking_hits(index, spec, part_rows, rows, related,
+                                                 first=first):
                 found.append(Conflict(parts[part].kind, index.kind(row),
                                       self._names[index.owner(row)]))
                 if first:  # the first by obstacle, then part (walls come first)
@@ -427,15 +440,23 @@ class Layout:
         across = (fixed + p0 + EPS, fixed + p1 - EPS)
         strips = (shapely.box(along[0], across[0], along[1], across[1]) if axis == 0
                   else shapely.box(across[0], along[0], across[1], along[1]))
-        part_rows, rows = index.hits(strips)
-        hits = self._blocking_hits(index, spec, part_rows, rows, related)
+        part_rows, rows = index.hits(strips, boxes=True)
         windows = [zone for _, zone in self._windows_for(spec) if zone.intersects(strips[0])]
         strip_bounds = shapely.bounds(strips)
-        if len(hits) + len(windows) <= _FEW_HITS:
+        # in any order: the complement sorts the spans
+        if len(rows) > _FEW_HITS:
+            rows, part_rows = self._blocking_rows(index, spec, part_rows, rows, related)
+            hits = None
+        else:
+            hits = self._blocking_hits(index, spec, part_rows, rows, related)
+        if (len(rows) if hits is None else len(hits)) + len(windows) <= _FEW_HITS:
+            if hits is None:
+                hits = list(zip(rows.tolist(), part_rows.tolist()))
             spans = self._spans_few(index, hits, windows, strips, strip_bounds.tolist(), axis)
             return _complement_few([(s0 - a1[i], s1 - a0[i]) for i, s0, s1 in spans], lo, hi)
-        rows = np.array([row for row, _ in hits], dtype=np.int64)
-        part_rows = np.array([part for _, part in hits], dtype=np.int64)
+        if hits is not None:
+            rows = np.array([row for row, _ in hits], dtype=np.int64)
+            part_rows = np.array([part for _, part in hits], dtype=np.int64)
         rectangle = index.is_rectangle[rows]
         rect_parts, rect_bounds = part_rows[rectangle], index.bounds[rows[rectangle]]
         shape_parts = part_rows[~rectangle].tolist()

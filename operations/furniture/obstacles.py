@@ -21,6 +21,7 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 from shapely import STRtree
 
 __all__ = ["WALL", "BODY", "CLEARANCE", "DOOR", "KINDS", "ObstacleBlock", "ObstacleIndex",
@@ -44,6 +45,9 @@ class ObstacleBlock:
     bounds: np.ndarray
     """``(n, 4)``: ``(minx, minz, maxx, maxz)`` of an axis-aligned rectangle; NaN for any
     other shape (a door's swing, a turned item)."""
+    boxes: np.ndarray
+    """Whether each geometry is the box of its bounds (then it meets a box iff their
+    bounds meet)."""
 
     @classmethod
     def make(cls, kinds: Sequence[int], owners: Sequence[int], geometries: np.ndarray,
@@ -53,7 +57,9 @@ class ObstacleBlock:
         kind = np.array(kinds, dtype=np.int64)
         owner = np.array(owners, dtype=np.int64)
         columns = np.stack([2 * kind, owner, np.where(kind == CLEARANCE, owner, -1)], axis=1)
-        return cls(columns, geometries, bounds)
+        boxes = ~np.isnan(bounds[:, 0])
+        boxes[boxes] = shapely.equals(geometries[boxes], shapely.box(*bounds[boxes].T))
+        return cls(columns, geometries, bounds, boxes)
 
 
 class ObstacleIndex:
@@ -65,6 +71,7 @@ class ObstacleIndex:
         self.geometries = np.concatenate([b.geometries for b in blocks])
         self.bounds = np.concatenate([b.bounds for b in blocks])
         self.is_rectangle = ~np.isnan(self.bounds[:, 0])
+        self.shaped = ~np.concatenate([b.boxes for b in blocks])
         self.tree = STRtree(self.geometries)
         self._rows: list[list[int]] | None = None
 
@@ -76,9 +83,23 @@ class ObstacleIndex:
         """The owner id of obstacle ``row``."""
         return int(self.columns[row, 1])
 
-    def hits(self, geometries: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``(query index, row)`` of every obstacle each of ``geometries`` intersects."""
-        found = self.tree.query(geometries, predicate="intersects")
+    def hits(self, geometries: np.ndarray, boxes: bool = False
+             ) -> tuple[np.ndarray, np.ndarray]:
+        """``(query index, row)`` of every obstacle each of ``geometries`` intersects.
+
+        ``boxes``: the geometries are axis-aligned boxes, so the predicate is evaluated
+        only for the obstacles that are not (the tree's envelope test decides the rest).
+        """
+        if not boxes:
+            found = self.tree.query(geometries, predicate="intersects")
+            return found[0], found[1]
+        found = self.tree.query(geometries)
+        shaped = self.shaped[found[1]]
+        if shaped.any():
+            keep = ~shaped
+            keep[shaped] = shapely.intersects(geometries[found[0, shaped]],
+                                              self.geometries[found[1, shaped]])
+            found = found[:, keep]
         return found[0], found[1]
 
     def blocking(self, rows: np.ndarray, part_is_body: np.ndarray, owner: int,
