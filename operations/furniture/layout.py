@@ -278,11 +278,13 @@ class Layout:
     def _block(self, kinds: list[int], owners: list[str], geometries: np.ndarray,
                bounds: np.ndarray | None = None) -> ObstacleBlock:
         """Obstacles as an :class:`.obstacles.ObstacleBlock`; ``bounds`` when all of
-        them are known to be axis-aligned rectangles, else each shape is tested."""
+        them are known to be the boxes of their bounds, else each shape is tested."""
+        boxes = bounds is not None
         if bounds is None:
             bounds = np.array([_rectangle(g) or (np.nan,) * 4 for g in geometries],
                               dtype=float).reshape(-1, 4)
-        return ObstacleBlock.make(kinds, [self._id(o) for o in owners], geometries, bounds)
+        return ObstacleBlock.make(kinds, [self._id(o) for o in owners], geometries, bounds,
+                                  boxes)
 
     # -- state ---------------------------------------------------------------------------
     def add(self, spec: ItemSpec, pose: Pose) -> None:

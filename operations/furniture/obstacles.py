@@ -45,21 +45,21 @@ class ObstacleBlock:
     bounds: np.ndarray
     """``(n, 4)``: ``(minx, minz, maxx, maxz)`` of an axis-aligned rectangle; NaN for any
     other shape (a door's swing, a turned item)."""
-    boxes: np.ndarray
-    """Whether each geometry is the box of its bounds (then it meets a box iff their
-    bounds meet)."""
+    shaped: np.ndarray
+    """Whether each geometry is not the box of its bounds (a box meets another box iff
+    their bounds meet; any other shape needs the exact test)."""
 
     @classmethod
     def make(cls, kinds: Sequence[int], owners: Sequence[int], geometries: np.ndarray,
-             bounds: np.ndarray) -> "ObstacleBlock":
+             bounds: np.ndarray, boxes: bool = False) -> "ObstacleBlock":
         """A block of obstacles of ``kinds`` (:data:`WALL` ...) owned by the ids
-        ``owners`` (an item or a label)."""
+        ``owners`` (an item or a label); ``boxes``: the geometries are known to be the
+        boxes of their bounds, else each is tested."""
         kind = np.array(kinds, dtype=np.int64)
         owner = np.array(owners, dtype=np.int64)
         columns = np.stack([2 * kind, owner, np.where(kind == CLEARANCE, owner, -1)], axis=1)
-        boxes = ~np.isnan(bounds[:, 0])
-        boxes[boxes] = shapely.equals(geometries[boxes], shapely.box(*bounds[boxes].T))
-        return cls(columns, geometries, bounds, boxes)
+        shaped = np.zeros(len(geometries), dtype=bool) if boxes else _shaped(geometries, bounds)
+        return cls(columns, geometries, bounds, shaped)
 
 
 class ObstacleIndex:
@@ -71,7 +71,8 @@ class ObstacleIndex:
         self.geometries = np.concatenate([b.geometries for b in blocks])
         self.bounds = np.concatenate([b.bounds for b in blocks])
         self.is_rectangle = ~np.isnan(self.bounds[:, 0])
-        self.shaped = ~np.concatenate([b.boxes for b in blocks])
+        self.shaped = np.concatenate([b.shaped for b in blocks])
+        self.any_shaped = bool(self.shaped.any())
         self.tree = STRtree(self.geometries)
         self._rows: list[list[int]] | None = None
 
@@ -94,8 +95,10 @@ class ObstacleIndex:
             found = self.tree.query(geometries, predicate="intersects")
             return found[0], found[1]
         found = self.tree.query(geometries)
+        if not self.any_shaped:
+            return found[0], found[1]
         shaped = self.shaped[found[1]]
-        if shaped.any():
+        if np.count_nonzero(shaped):
             keep = ~shaped
             keep[shaped] = shapely.intersects(geometries[found[0, shaped]],
                                               self.geometries[found[1, shaped]])
@@ -145,6 +148,22 @@ _RUG_BLOCKED_BY = np.array([True, True, False, False, False, False, False, False
 item (a rug) is blocked by the walls only."""
 _BLOCKED_BY_LIST = _BLOCKED_BY.tolist()
 _RUG_BLOCKED_BY_LIST = _RUG_BLOCKED_BY.tolist()
+
+
+def _shaped(geometries: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+    """Which of ``geometries`` are not the boxes of their ``bounds`` (NaN: not a
+    rectangle). A polygon without holes whose every edge runs along a side of its bounds
+    is that box: its outline is a closed curve in the box's outline, so all of it."""
+    shaped = np.isnan(bounds[:, 0]) | (shapely.get_num_interior_rings(geometries) > 0)
+    check = np.flatnonzero(~shaped)
+    if len(check):
+        coords, which = shapely.get_coordinates(geometries[check], return_index=True)
+        b = bounds[check][which]
+        sides = np.stack([coords[:, 0] == b[:, 0], coords[:, 1] == b[:, 1],
+                          coords[:, 0] == b[:, 2], coords[:, 1] == b[:, 3]], axis=1)
+        along = (sides[1:] & sides[:-1]).any(axis=1) | (which[1:] != which[:-1])
+        shaped[check] = np.bincount(which[1:][~along], minlength=len(check)) > 0
+    return shaped
 
 
 def complement(starts: np.ndarray, ends: np.ndarray, lo: float, hi: float
