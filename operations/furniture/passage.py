@@ -46,6 +46,7 @@ from __future__ import annotations
 
 from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import shapely
@@ -72,6 +73,9 @@ _CACHE = 16
 """Eroded floors kept per room (the layouts a family search goes back and forth between)."""
 _CHAIN = 16
 """Most items added since a candidate's last test that its pieces are updated by."""
+_LOCAL = 16
+"""Obstacles from which on a candidate is updated locally: with fewer, the floor has so
+few vertices that the exact difference costs no more."""
 _ROUNDING = 1e-10
 """A bound on how far one local update moves the floor's areas from those of the exact
 difference, per squared metre of the room's largest coordinate: both are sums of some
@@ -144,13 +148,11 @@ class _Obstacles:
 
 @dataclass(frozen=True)
 class _Step:
-    """How a state was made from the one a box smaller: the grown box, the boxes of the
-    smaller state it meets, the cluster of each place it meets the smaller state's
-    obstacles, the smaller floor's area under it, and whether it meets an approach:
-    what updating a candidate's pieces from the smaller state takes."""
+    """How a state was made from its parent, the state one box smaller: the boxes of the
+    parent the added box meets, the cluster of each place it meets the parent's
+    obstacles, the parent floor's area under it, and whether it meets an approach; what
+    updating a candidate's pieces from the parent takes."""
 
-    parent: _State
-    box: Box
     met: list[int]
     places: list[int]
     area: float
@@ -159,17 +161,23 @@ class _Step:
 
 @dataclass
 class _State:
-    """The eroded floor left by one set of obstacles, the obstacles' clusters, the floor's
-    pieces and verdict once known, and the verdicts with each candidate tested against it
-    so far (the solver tries the same pose against the same items again while it seats
-    families and goes back and forth between attempts)."""
+    """The eroded floor left by one set of obstacles (``key``), and the verdicts with each
+    candidate tested against it so far (the solver tries the same pose against the same
+    items again while it seats families and goes back and forth between attempts).
+
+    A state made from the one a box smaller keeps it as ``parent`` with the grown box
+    ``added``. The floor's verdict and pieces, the obstacles' clusters and the step from
+    the parent are made when first asked for."""
 
     floor: BaseGeometry
-    obstacles: _Obstacles
-    step: _Step | None = None
+    key: frozenset[Box]
+    parent: _State | None = None
+    added: Box = (0.0, 0.0, 0.0, 0.0)
     verdict: Blockage | None = _UNKNOWN
     pieces: _Pieces | None = None
     with_candidate: dict[Box, Blockage | None] = field(default_factory=dict)
+    obstacles: _Obstacles | None = None
+    step: _Step | None = None
 
 
 class Passage:
@@ -195,8 +203,8 @@ class Passage:
         zones = np.array([d.zone(self.radius + APPROACH_MARGIN).buffer(-_TOUCH,
                                                                        join_style="mitre")
                           for d in doors], dtype=object)
-        pieces = _parts(eroded)
-        pieces = pieces[shapely.area(pieces) > _AREA_EPS]
+        pieces, areas = _parts(eroded)
+        pieces = pieces[np.greater(areas, _AREA_EPS)]
         meets = _meets(pieces, zones)
         used = np.flatnonzero(meets.any(axis=0))  # doors a robot can use in the empty room
         meets = meets[:, used]
@@ -204,14 +212,25 @@ class Passage:
         self.approaches = zones[used]
         self.groups = _groups(meets)
         self.floor = shapely.union_all(pieces[meets.any(axis=1)])
-        shapely.prepare(self.floor)
         self._approach_bounds = [tuple(b) for b in shapely.bounds(self.approaches).tolist()]
-        self._around = _around(self.floor) if self.active else []
         reach = max(np.abs(self.floor.bounds).max(), 1.0) if self.active else 1.0
         self._rounding = _ROUNDING * reach * reach
         self._around_met: dict[Box, list[tuple[int, np.ndarray]]] = {}
+        self._insides: dict[Box, bool] = {}
         self._states: dict[frozenset[Box], _State] = {}
-        self._last: dict[Box, tuple[_State, _Pieces, list[int]]] = {}
+        self._last: dict[Box, tuple[_State, _Pieces, list[int] | None]] = {}
+
+    @cached_property
+    def _around(self) -> list[BaseGeometry]:
+        """The connected parts of the plane around the eroded room (outside it, and each
+        hole), as far as any obstacle can reach: the nodes of the obstacles' clusters
+        beside the boxes (made when a floor is first updated locally)."""
+        minx, minz, maxx, maxz = self.floor.bounds
+        pad = 2 * (maxx - minx + maxz - minz) + 1.0
+        frame = shapely.box(minx - pad, minz - pad, maxx + pad, maxz + pad)
+        parts = _parts(frame.difference(self.floor))[0]
+        joined = _components(len(parts), _touching_pairs(parts))
+        return [shapely.union_all(parts[np.equal(joined, k)]) for k in sorted(set(joined))]
 
     @property
     def active(self) -> bool:
@@ -249,14 +268,19 @@ class Passage:
 
     def _candidate_verdict(self, state: _State, candidate: Box) -> Blockage | None:
         grown = self._grown(candidate)
-        updated, met = self._updated(state, candidate, grown)
-        if updated is None:
-            updated = self._cut(state.obstacles, state.floor, self._pieces(state), grown, met)
-        if updated is not None:
-            verdict = self._judge(updated)
-            if verdict is not _UNSURE:
-                self._last[candidate] = (state, updated, met)
-                return verdict
+        met = None
+        if len(state.key) >= _LOCAL:
+            updated, met = self._updated(state, candidate, grown)
+            if updated is None:
+                obstacles = self._obstacles(state)
+                if met is None:
+                    met = obstacles.meeting(grown)
+                updated = self._cut(obstacles, state.floor, self._pieces(state), grown, met)
+            if updated is not None:
+                verdict = self._judge(updated)
+                if verdict is not _UNSURE:
+                    self._last[candidate] = (state, updated, met)
+                    return verdict
         box = shapely.box(*grown)
         if not state.floor.intersects(box):
             pieces, verdict = self._pieces(state), self._state_verdict(state)
@@ -267,49 +291,57 @@ class Passage:
         return verdict
 
     def _updated(self, state: _State, candidate: Box, grown: Box
-                 ) -> tuple[_Pieces | None, list[int]]:
+                 ) -> tuple[_Pieces | None, list[int] | None]:
         """The pieces of ``state``'s floor less the grown candidate, updated box by box
         from those of the state a few boxes smaller it was last tested against (None when
-        there is none, or an update is not local), and the boxes it meets."""
+        there is none, or an update is not local), and the boxes it meets (None when
+        not known)."""
         last = self._last.get(candidate)
-        steps: list[_Step] = []
+        if last is None:
+            return None, None
+        children: list[_State] = []
         ancestor = state
-        while (last is not None and ancestor is not last[0] and ancestor.step is not None
-               and len(steps) < _CHAIN):
-            steps.append(ancestor.step)
-            ancestor = ancestor.step.parent
-        if last is None or ancestor is not last[0]:
-            return None, state.obstacles.meeting(grown)
+        while ancestor is not last[0] and ancestor.parent is not None and len(children) < _CHAIN:
+            children.append(ancestor)
+            ancestor = ancestor.parent
+        if ancestor is not last[0]:
+            return None, None
         _, pieces, met = last
+        if met is None:
+            met = self._obstacles(ancestor).meeting(grown)
         updated: _Pieces | None = pieces
-        for step in reversed(steps):
+        for child in reversed(children):
             if updated is not None:
-                updated = self._after(step, updated, met, grown)
-            if _meet(step.box, grown):
-                met = met + [len(step.parent.obstacles.labels) - step.parent.obstacles.around]
+                updated = self._after(child, updated, met, grown)
+            if _meet(child.added, grown):
+                met = met + [len(self._obstacles(child).labels) - 1
+                             - self._obstacles(child).around]
         return updated, met
 
-    def _after(self, step: _Step, pieces: _Pieces, met: list[int],
+    def _after(self, child: _State, pieces: _Pieces, met: list[int],
                grown: Box) -> _Pieces | None:
-        """The pieces of a floor less the grown box ``grown``, after ``step``, from those
-        before it (``pieces``); ``met``: the boxes of the state before that it meets."""
+        """The pieces of ``child``'s floor less the grown box ``grown``, from those of its
+        parent's floor less ``grown`` (``pieces``; ``met``: the parent's boxes ``grown``
+        meets)."""
+        assert child.parent is not None
+        step = self._step(child)
         if step.at_door:
             return None
-        before = step.parent.obstacles
-        if _meet(step.box, grown):
+        parent, before = child.parent, self._obstacles(child.parent)
+        if _meet(child.added, grown):
             obstacles = before.plus(grown, self._around_nodes(grown), met)
-            return self._cut(obstacles, step.parent.floor, pieces, step.box,
+            return self._cut(obstacles, parent.floor, pieces, child.added,
                              step.met + [len(before.labels) - before.around], grown)
         # the box meets the obstacles in the same places as before, but the clusters
         # that ``grown`` meets are joined
-        joined = {before.labels[node] for node, _ in self._around_contacts(grown)}
+        joined = {before.labels[node] for node in self._around_nodes(grown)}
         joined.update(before.labels[before.around + i] for i in met)
         places = step.places
         if len(joined) > 1:
             places = [-1 if label in joined else label for label in places]
         if len(set(places)) < len(places):
             return None
-        return _less(pieces, step.box, step.area)
+        return _less(pieces, child.added, step.area)
 
     def _cut(self, obstacles: _Obstacles, floor: BaseGeometry, pieces: _Pieces, cut: Box,
              met: list[int], extra: Box | None = None) -> _Pieces | None:
@@ -365,8 +397,8 @@ class Passage:
         found = self._around_met.get(box)
         if found is None:
             found = []
-            shape = shapely.box(*box)
-            if not self.floor.contains_properly(shape):
+            if not self._inside(box):
+                shape = shapely.box(*box)
                 for node, around in enumerate(self._around):
                     parts = shapely.get_parts(shapely.intersection(around, shape))
                     joined = _components(len(parts), _touching_pairs(parts))
@@ -375,7 +407,18 @@ class Passage:
         return found
 
     def _around_nodes(self, box: Box) -> list[int]:
+        """The nodes of the plane around the eroded room that ``box`` meets."""
+        if len(self._around) == 1:  # the usual case: no need to know where
+            return [] if self._inside(box) else [0]
         return sorted({node for node, _ in self._around_contacts(box)})
+
+    def _inside(self, box: Box) -> bool:
+        """Whether ``box`` lies in the interior of the eroded room."""
+        inside = self._insides.get(box)
+        if inside is None:
+            shapely.prepare(self.floor)  # once: then a no-op
+            inside = self._insides[box] = self.floor.contains_properly(shapely.box(*box))
+        return inside
 
     def _grown(self, footprint: Box) -> Box:
         r = self.radius
@@ -399,25 +442,46 @@ class Passage:
             smaller = smaller_by.get(footprint)
             if smaller is not None:
                 grown = self._grown(footprint)
-                met = smaller.obstacles.meeting(grown)
-                obstacles = smaller.obstacles.plus(grown, self._around_nodes(grown), met)
-                step = _Step(smaller, grown, met, self._places(smaller.obstacles, grown, met),
-                             _clipped_area(smaller.floor, grown), self._at_door(grown))
                 box = shapely.box(*grown)
                 if not smaller.floor.intersects(box):
-                    return _State(smaller.floor, obstacles, step, smaller.verdict,
+                    return _State(smaller.floor, key, smaller, grown, smaller.verdict,
                                   smaller.pieces)
-                return _State(smaller.floor.difference(box), obstacles, step)
-        obstacles = _Obstacles(np.empty((4, 0)), tuple(range(len(self._around))),
-                               len(self._around))
-        for footprint in key:
-            grown = self._grown(footprint)
-            obstacles = obstacles.plus(grown, self._around_nodes(grown),
-                                       obstacles.meeting(grown))
+                return _State(smaller.floor.difference(box), key, smaller, grown)
         if not key:
-            return _State(self.floor, obstacles)
+            return _State(self.floor, key)
         return _State(self.floor.difference(
-            shapely.union_all([shapely.box(*self._grown(b)) for b in key])), obstacles)
+            shapely.union_all([shapely.box(*self._grown(b)) for b in key])), key)
+
+    def _obstacles(self, state: _State) -> _Obstacles:
+        """The clusters of ``state``'s obstacles, from those of its nearest ancestor that
+        has them."""
+        line = [state]  # the state and its ancestors without clusters
+        while line[-1].obstacles is None and line[-1].parent is not None:
+            line.append(line[-1].parent)
+        root = line.pop()
+        if root.obstacles is None:  # a state made from scratch
+            root.obstacles = _Obstacles(np.empty((4, 0)), tuple(range(len(self._around))),
+                                        len(self._around))
+            for footprint in root.key:
+                root.obstacles = self._plus(root.obstacles, self._grown(footprint))
+        obstacles = root.obstacles
+        for child in reversed(line):
+            obstacles = child.obstacles = self._plus(obstacles, child.added)
+        return obstacles
+
+    def _plus(self, obstacles: _Obstacles, box: Box) -> _Obstacles:
+        return obstacles.plus(box, self._around_nodes(box), obstacles.meeting(box))
+
+    def _step(self, child: _State) -> _Step:
+        """How ``child`` was made from its parent (:class:`_Step`)."""
+        if child.step is None:
+            assert child.parent is not None
+            before = self._obstacles(child.parent)
+            met = before.meeting(child.added)
+            child.step = _Step(met, self._places(before, child.added, met),
+                               _clipped_area(child.parent.floor, child.added),
+                               self._at_door(child.added))
+        return child.step
 
     def _pieces(self, state: _State) -> _Pieces:
         if state.pieces is None:
@@ -430,10 +494,10 @@ class Passage:
         return state.verdict
 
     def _exact(self, floor: BaseGeometry) -> _Pieces:
-        parts = _parts(floor)
-        return _Pieces(parts, shapely.area(parts).tolist(),
-                       _meets(parts, self.approaches).tolist(),
-                       [tuple(b) for b in shapely.bounds(parts).tolist()])
+        parts, areas = _parts(floor)
+        bounds = ([parts[0].bounds] if len(parts) == 1
+                  else [tuple(b) for b in shapely.bounds(parts).tolist()])
+        return _Pieces(parts, areas, _meets(parts, self.approaches).tolist(), bounds)
 
     def _judge(self, pieces: _Pieces) -> Blockage | None:
         """The rule on the pieces of a floor; :data:`_UNSURE` when the areas carry local
@@ -498,14 +562,16 @@ class Passage:
         return None
 
 
-def _parts(geometry: BaseGeometry) -> np.ndarray:
-    """The polygons of ``geometry`` with an area."""
+def _parts(geometry: BaseGeometry) -> tuple[np.ndarray, list[float]]:
+    """The polygons of ``geometry`` with an area, and their areas."""
     if isinstance(geometry, Polygon):  # the usual case, without get_parts' overhead
         parts = np.empty(1, dtype=object)
         parts[0] = geometry
-        return parts if geometry.area > 0 else parts[:0]
+        area = geometry.area
+        return (parts, [area]) if area > 0 else (parts[:0], [])
     parts = shapely.get_parts(geometry)
-    return parts[shapely.area(parts) > 0] if len(parts) else parts
+    areas = shapely.area(parts)
+    return parts[areas > 0], areas[areas > 0].tolist()
 
 
 def _meets(pieces: np.ndarray, zones: np.ndarray) -> np.ndarray:
@@ -540,17 +606,6 @@ def _clipped_area(geometry: BaseGeometry, box: Box) -> float:
     """The area of ``geometry`` inside ``box`` (a rectangle clip: exact, and linear in
     the vertices without the overlay's graph)."""
     return float(shapely.clip_by_rect(geometry, *box).area)
-
-
-def _around(floor: BaseGeometry) -> list[BaseGeometry]:
-    """The connected parts of the plane around ``floor`` (outside it, and each hole), as
-    far as any obstacle can reach."""
-    minx, minz, maxx, maxz = floor.bounds
-    pad = 2 * (maxx - minx + maxz - minz) + 1.0
-    frame = shapely.box(minx - pad, minz - pad, maxx + pad, maxz + pad)
-    parts = _parts(frame.difference(floor))
-    joined = _components(len(parts), _touching_pairs(parts))
-    return [shapely.union_all(parts[np.equal(joined, k)]) for k in sorted(set(joined))]
 
 
 def _touching_pairs(shapes: np.ndarray) -> list[tuple[int, int]]:
