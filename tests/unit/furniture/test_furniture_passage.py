@@ -99,6 +99,20 @@ def test_a_candidate_asked_again_is_looked_up_for_its_own_obstacles(monkeypatch)
     assert passage.blockage([], left) is None
     assert len(computed) == 2
 
+def test_a_candidate_asked_again_sees_an_item_added_at_the_door():
+    room = box(0, 0, 6, 4)
+    door = OpeningStrip("door 0", (2.0, 0.0), (1.0, 0.0), (0.0, 1.0), 0.9, 0.0)  # x 2.0..2.9
+    padding = [(0.01 * i, 3.9, 0.01 * i + 0.05, 3.95) for i in range(16)]  # in a corner
+    across = (3.5, 0.6, 3.6, 4.0)  # walls off the right third, away from the door
+    at_door = (2.3, 0.0, 2.6, 0.2)  # covers the door's approach
+    passage = Passage(room, [door], 0.6)
+    before = passage.blockage(padding, across)
+    after = passage.blockage(padding + [at_door], across)
+    assert before is not None and before.kind == "pocket" and before.what != "100%"
+    assert after == Blockage("pocket", "100%")  # nothing reached any more
+    assert after == Passage(room, [door], 0.6).blockage(padding + [at_door], across)
+
+
 # -- in the layout and the placer ----------------------------------------------------------
 
 def wardrobe(**rule) -> ItemSpec:
