@@ -13,7 +13,11 @@ successive sizes (1: linear, 2: quadratic).
 
 ``--passage-width 0`` switches the passage rule off, to time the placement alone: in a
 room this full most poses tried would wall off part of the floor, and telling by how
-much takes the exact difference of the candidate with the whole eroded floor.
+much takes the pieces of the floor each pose leaves (mostly updated locally, see
+``operations/furniture/passage.py``).
+
+A digest of the placements (every item's name, position and turn, over the seeds) is
+printed per size, so a change meant to be faster only can be checked to place the same.
 
 Target (issue 21): 128 items in ≤ 0.2 s CPU.
 """
@@ -21,6 +25,7 @@ Target (issue 21): 128 items in ≤ 0.2 s CPU.
 from __future__ import annotations
 
 import argparse
+import hashlib
 import math
 import statistics
 import sys
@@ -82,6 +87,7 @@ def main() -> None:
             models = {r.name: (library.get(r.name).name, library.get(r.name).size)
                       for r in rules if not r.is_detail}
             times, placed = [], []
+            digest = hashlib.sha256()
             for seed in range(options.repeat):
                 clock.sample()
                 start = time.process_time()
@@ -89,17 +95,22 @@ def main() -> None:
                                             attempts=1, passage_width=options.passage_width)
                 times.append(time.process_time() - start)
                 placed.append(sum(not f.is_detail for f in furniture))
-            rows.append((count, statistics.median(times), statistics.median(placed)))
+                digest.update(repr([(f.name, f.position, f.rotation)
+                                    for f in furniture]).encode())
+            rows.append((count, statistics.median(times), statistics.median(placed),
+                         digest.hexdigest()[:16]))
     print(f"add_furniture, one 16 x 16 m room, {options.repeat} seeds per size, passage "
           f"width {options.passage_width:g} m; {clock.describe()}\n")
     print("| items | placed | median CPU s | / ref | growth exponent |")
     print("|---:|---:|---:|---:|---:|")
     previous = None
-    for count, seconds, placed in rows:
+    for count, seconds, placed, _ in rows:
         growth = (f"{math.log(seconds / previous[1]) / math.log(count / previous[0]):.2f}"
                   if previous else "")
         print(f"| {count} | {placed:g} | {seconds:.3f} | {clock.ratio(seconds):,.0f} | {growth} |")
         previous = (count, seconds)
+    print("\nplacements: " + ", ".join(f"{count} items {digest}"
+                                      for count, _, _, digest in rows))
     last = rows[-1]
     if last[0] == 128:
         print(f"\n128 items: {last[1]:.3f} s CPU (target ≤ {TARGET_SECONDS} s: "
