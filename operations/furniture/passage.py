@@ -301,7 +301,8 @@ class Passage:
             return None, None
         children: list[_State] = []
         ancestor = state
-        while ancestor is not last[0] and ancestor.parent is not None and len(children) < _CHAIN:
+        while (ancestor is not last[0] and ancestor.parent is not None
+               and len(children) < _CHAIN):
             children.append(ancestor)
             ancestor = ancestor.parent
         if ancestor is not last[0]:
@@ -368,7 +369,7 @@ class Passage:
     def _places(self, obstacles: _Obstacles, box: Box, met: list[int]) -> list[int]:
         """The cluster of each separate place where ``box`` meets ``obstacles`` (``met``:
         the boxes it meets); a cluster met in two places closes a ring."""
-        around = self._around_contacts(box)
+        around = [] if self._inside(box) else self._around_contacts(box)
         labels = [obstacles.labels[node] for node, _ in around]
         labels += [obstacles.labels[obstacles.around + i] for i in met]
         if len(set(labels)) == len(labels):
@@ -383,11 +384,10 @@ class Passage:
                  if labels[n + i] == labels[n + j] and _meet(a, overlaps[j])]
         for k, (_, parts) in enumerate(around):
             for i, overlap in enumerate(overlaps):
-                if labels[n + i] == labels[k]:
-                    shape = shapely.box(*overlap)
-                    if (not self.floor.contains_properly(shape) if n == 1
-                            else any(p.intersects(shape) for p in parts)):
-                        pairs.append((k, n + i))
+                if labels[n + i] == labels[k] and (
+                        not self._within(overlap) if n == 1  # then the one place
+                        else any(p.intersects(shapely.box(*overlap)) for p in parts)):
+                    pairs.append((k, n + i))
         place = _components(len(labels), pairs)
         return [labels[k] for k in range(len(labels)) if place[k] == k]
 
@@ -397,7 +397,12 @@ class Passage:
         found = self._around_met.get(box)
         if found is None:
             found = []
-            if not self._inside(box):
+            if self._inside(box):
+                pass
+            elif self._room is not None:
+                found = [(0, shapely.box(*np.array(place).T))
+                         for place in _outside_box(self._room, box)]
+            else:
                 shape = shapely.box(*box)
                 for node, around in enumerate(self._around):
                     parts = shapely.get_parts(shapely.intersection(around, shape))
@@ -413,12 +418,29 @@ class Passage:
         return sorted({node for node, _ in self._around_contacts(box)})
 
     def _inside(self, box: Box) -> bool:
-        """Whether ``box`` lies in the interior of the eroded room."""
+        """:meth:`_within`, kept per box."""
         inside = self._insides.get(box)
         if inside is None:
-            shapely.prepare(self.floor)  # once: then a no-op
-            inside = self._insides[box] = self.floor.contains_properly(shapely.box(*box))
+            inside = self._insides[box] = self._within(box)
         return inside
+
+    def _within(self, box: Box) -> bool:
+        """Whether ``box`` lies in the interior of the eroded room."""
+        room = self._room
+        if room is not None:
+            return (room[0] < box[0] and box[2] < room[2]
+                    and room[1] < box[1] and box[3] < room[3])
+        shapely.prepare(self.floor)  # once: then a no-op
+        return self.floor.contains_properly(shapely.box(*box))
+
+    @cached_property
+    def _room(self) -> Box | None:
+        """The eroded room's bounds when it is that box (the usual case: then where a box
+        meets the plane around it is bounds arithmetic)."""
+        bounds = self.floor.bounds
+        if isinstance(self.floor, Polygon) and self.floor.equals(shapely.box(*bounds)):
+            return bounds
+        return None
 
     def _grown(self, footprint: Box) -> Box:
         r = self.radius
@@ -606,6 +628,23 @@ def _clipped_area(geometry: BaseGeometry, box: Box) -> float:
     """The area of ``geometry`` inside ``box`` (a rectangle clip: exact, and linear in
     the vertices without the overlay's graph)."""
     return float(shapely.clip_by_rect(geometry, *box).area)
+
+
+def _outside_box(room: Box, box: Box) -> list[list[Box]]:
+    """Where ``box`` meets the plane around the box ``room`` (outside it, closed): the
+    parts of ``box`` beyond each side of ``room``, grouped into connected places. The
+    parts beyond two adjacent sides meet; those beyond opposite sides only through a
+    third."""
+    x0, z0, x1, z1 = box
+    left = (x0, z0, min(x1, room[0]), z1) if x0 <= room[0] else None
+    right = (max(x0, room[2]), z0, x1, z1) if x1 >= room[2] else None
+    bottom = (x0, z0, x1, min(z1, room[1])) if z0 <= room[1] else None
+    top = (x0, max(z0, room[3]), x1, z1) if z1 >= room[3] else None
+    if left and right and not (bottom or top):
+        return [[left], [right]]
+    if bottom and top and not (left or right):
+        return [[bottom], [top]]
+    return [[part for part in (left, right, bottom, top) if part]]
 
 
 def _touching_pairs(shapes: np.ndarray) -> list[tuple[int, int]]:
