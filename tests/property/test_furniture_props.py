@@ -122,16 +122,17 @@ def exact_blockage(interior, doors, width, obstacles, candidate):
 
 
 def random_room(rng: np.random.Generator):
-    """A room (a rectangle, an L or T of rectangles, or a rectangle with a corner cut at
-    45°: walls off the axes) with one to three doors in its outline."""
-    def rect() -> tuple[float, float, float, float]:
+    """A room (a rectangle, as narrow as a corridor, an L or T of rectangles, or a
+    rectangle with a corner cut at 45°: walls off the axes) with one to three doors in
+    its outline."""
+    def rect(least: float = 2.5) -> tuple[float, float, float, float]:
         x, z = np.round(rng.uniform(0, 3, 2), 1)
-        w, d = np.round(rng.uniform(2.5, 7, 2), 1)
+        w, d = np.round(rng.uniform(least, 7, 2), 1)
         return (x, z, x + w, z + d)
 
     kind = rng.integers(3)
     if kind == 0:
-        room = box(*rect())
+        room = box(*rect(1.2))  # down to a corridor an item can block
     elif kind == 1:
         room = unary_union([box(*rect()) for _ in range(int(rng.integers(2, 4)))])
         room = max(_parts(room), key=lambda p: p.area)
@@ -188,12 +189,15 @@ def random_footprint(rng: np.random.Generator, room, doors, placed, width: float
 def test_the_passage_rule_updated_locally_agrees_with_the_rule_from_scratch(seed):
     """Items added one by one, the poses tried for each asked again as the room fills
     (as the solver does), sometimes an item taken out again: every verdict equals the
-    rule computed from scratch, wherever rounding cannot decide that one."""
+    rule computed from scratch, wherever rounding cannot decide that one. Whether the
+    room is crowded or not, as a few rooms' worth of small items stand outside it."""
     rng = np.random.default_rng(seed)
     room, doors = random_room(rng)
     width = (0.5, 0.6)[int(rng.integers(2))]
     passage = Passage(room, doors, width)
-    placed: list = []
+    minx, minz = room.bounds[:2]
+    placed: list = [(minx + 0.1 * i, minz - 2.0, minx + 0.1 * i + 0.05, minz - 1.95)
+                    for i in range(int(rng.integers(0, 3)) * 12)]
     tried: list = []
     for _ in range(40):  # a room that fills up: some rooms with dozens of items
         fresh = [random_footprint(rng, room, doors, placed, width) for _ in range(3)]
