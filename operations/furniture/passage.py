@@ -251,11 +251,12 @@ class Passage:
         -----
         The eroded floors of the last few obstacle sets are kept with the verdicts of the
         candidates tested against them (a candidate tested again costs a look-up), and a
-        set's floor is made from that of the set one item smaller when it is known. A
-        candidate is judged from the pieces of the floor, or from its own pieces against
-        the set one item smaller, updated locally (module docstring): tens of
-        microseconds. Only when neither update is certain does it cost the exact
-        difference with the floor and the pieces of the result.
+        set's floor is made from that of the set one item smaller when it is known. In a
+        room of :data:`_LOCAL` obstacles or more, a candidate is judged from the pieces
+        of the floor, or from its own pieces against a set a few items smaller, updated
+        locally (module docstring): tens of microseconds. Only when neither update is
+        certain does it cost the exact difference with the floor and the pieces of the
+        result.
         """
         if not self.active:
             return None
@@ -314,9 +315,9 @@ class Passage:
         for child in reversed(children):
             if updated is not None:
                 updated = self._after(child, updated, met, grown)
-            if _meet(child.added, grown):
-                met = met + [len(self._obstacles(child).labels) - 1
-                             - self._obstacles(child).around]
+            if _meet(child.added, grown):  # the added box is the child's last
+                boxes = self._obstacles(child).bounds.shape[1]
+                met = met + [boxes - 1]
         return updated, met
 
     def _after(self, child: _State, pieces: _Pieces, met: list[int],
