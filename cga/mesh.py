@@ -19,8 +19,8 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
-__all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "face_normals", "is_watertight", "transform_points",
-           "volume_and_centre"]
+__all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "face_normals",
+           "is_watertight", "transform_points", "volume_and_centre"]
 
 _IDENTITY = np.eye(4)
 
