@@ -5,15 +5,15 @@ transforms of occupancy grids (clearances, the robot's body, one per disc radius
 local width). The ``edt`` package (Silversmith et al., seung-lab: the separable exact
 algorithm of Meijster et al. 2000 with the lower envelope of parabolas of Felzenszwalb
 and Huttenlocher 2012) computes them faster than ``scipy.ndimage.distance_transform_edt``
-and imports in milliseconds.
+and imports in milliseconds. Its squared distances are float32 sums of squared whole cell
+offsets, exact below 2**24, so their float64 square root is the very number scipy
+returns (scipy takes the float64 square root of the same whole number). A grid whose
+diagonal reaches 2**12 cells, whose squared distances could pass 2**24, is left to scipy.
 
 The grid morphology the check needs besides (:func:`disc_dilation`,
 :func:`diamond_dilation`, :func:`component_labels`) is here too, in numpy and SciPy's
 sparse graphs, so a build never imports ``scipy.ndimage``: its import alone costs
-0.16 s of CPU, most of it rewriting docstrings (issue 21). Its squared distances are float32 sums of squared whole cell
-offsets, exact below 2**24, so their float64 square root is the very number scipy
-returns (scipy takes the float64 square root of the same whole number). A grid whose
-diagonal reaches 2**12 cells, whose squared distances could pass 2**24, is left to scipy.
+0.16 s of CPU, most of it SciPy rewriting docstrings (issue 21).
 """
 
 from __future__ import annotations

@@ -142,7 +142,8 @@ def _cut_solid(mesh: MeshLike, cutter: manifold3d.Manifold) -> trimesh.Trimesh |
                            faces=np.asarray(out.tri_verts, dtype=np.int64), process=False)
 
 
-def _cut_face(node: SceneNode, cutter: manifold3d.Manifold) -> "TriangleMesh | trimesh.Trimesh | None":
+def _cut_face(node: SceneNode, cutter: manifold3d.Manifold
+              ) -> "TriangleMesh | trimesh.Trimesh | None":
     """A planar face less the cutter's cross-section in the face's plane."""
     from .shapes import polygon_mesh
 

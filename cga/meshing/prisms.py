@@ -19,7 +19,8 @@ from cga.mesh import TriangleMesh
 __all__ = ["prism", "prism_mesh"]
 
 
-def prism(area: Polygon | MultiPolygon, y_low: float, y_high: float) -> tuple[np.ndarray, np.ndarray]:
+def prism(area: Polygon | MultiPolygon, y_low: float,
+          y_high: float) -> tuple[np.ndarray, np.ndarray]:
     """Vertices and triangles of a vertical prism over a plan area.
 
     Rings are oriented (exteriors counter-clockwise in ``(x, z)``, holes clockwise); a
