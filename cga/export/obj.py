@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from cga.fsutil import atomic_write
+from cga.mesh import TriangleMesh
 from cga.scene import Scene, SceneNode
 
 from cga.appearance.material import Material
@@ -104,7 +105,11 @@ def mtl_text(materials: Mapping[str, Material]) -> str:
 
 
 def vertex_colors(mesh: Any) -> np.ndarray | None:
-    """A mesh's per-vertex colours as (n, 3) floats in 0..1, or None if it has none."""
+    """A mesh's per-vertex colours as (n, 3) floats in 0..1, or None if it has none: a
+    :class:`~cga.mesh.TriangleMesh`'s own (no trimesh made), a trimesh's visual's."""
+    if isinstance(mesh, TriangleMesh):
+        colors = mesh.vertex_colors
+        return None if colors is None else np.asarray(colors, dtype=float)[:, :3] / 255.0
     visual = getattr(mesh, "visual", None)
     if visual is None or visual.kind != "vertex":
         return None
