@@ -20,12 +20,16 @@ if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
 __all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "face_normals",
-           "is_watertight", "transform_points", "volume_and_centre"]
+           "is_watertight", "transform_points", "unitize", "volume_and_centre"]
 
 _IDENTITY = np.eye(4)
 
 _ZERO = float(np.finfo(np.float64).resolution * 100)
-"""Cross products shorter than this have no direction (trimesh's ``util.TOL_ZERO``)."""
+"""A vector no longer than this has no direction (trimesh's ``util.TOL_ZERO``)."""
+
+_ONES = [1.0, 1.0, 1.0]
+"""Sums the rows of a ``float[n, 3]`` as trimesh sums them, ``np.dot`` with ones (BLAS):
+the very call, so the rounding is trimesh's whatever order the BLAS kernel adds in."""
 
 
 class MeshLike(Protocol):
@@ -139,19 +143,31 @@ def is_watertight(faces: np.ndarray) -> bool:
     return bool(np.all(counts == 2))
 
 
+def unitize(vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each row of ``vectors`` (``float[n, 3]``) at unit length, and which rows have a
+    length (longer than :data:`_ZERO`; the others are returned as they are): trimesh's
+    ``util.unitize``, its operations in its order, so the floats are its own."""
+    norm = np.sqrt(np.dot(vectors * vectors, _ONES))
+    valid = norm > _ZERO
+    norm[valid] **= -1
+    return vectors * norm.reshape((-1, 1)), valid
+
+
 def face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The unit normal of each triangle (``float[m, 3, 3]`` corners, counter-clockwise
     seen from the side it faces) and whether it has one: a triangle whose corners' cross
     product is (nearly) zero gets a zero normal. The floats are trimesh's
     (``Trimesh.face_normals``: the same cross product and the same unitising steps)."""
-    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
-    crosses = np.cross(vectors[:, 0], vectors[:, 1])
-    norm = np.sqrt(np.dot(crosses * crosses, [1.0, 1.0, 1.0]))
-    valid = norm > _ZERO
-    norm[valid] **= -1
-    unit = crosses * norm.reshape((-1, 1))
+    unit, valid = unitize(_crosses(triangles))
     unit[~valid] = 0.0
     return unit, valid
+
+
+def _crosses(triangles: np.ndarray) -> np.ndarray:
+    """The cross product of each triangle's edges from its first corner (trimesh's
+    ``triangles.cross``): twice its area along its normal."""
+    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
+    return np.cross(vectors[:, 0], vectors[:, 1])
 
 
 def volume_and_centre(triangles: np.ndarray) -> tuple[float, np.ndarray]:
@@ -161,8 +177,7 @@ def volume_and_centre(triangles: np.ndarray) -> tuple[float, np.ndarray]:
     sums of trimesh's ``triangles.mass_properties``, so the floats are the same. The
     centre is not finite when the volume is zero."""
     triangles = np.asarray(triangles, dtype=np.float64)
-    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
-    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    crosses = _crosses(triangles)
     a, b, c = triangles[:, 0, :], triangles[:, 1, :], triangles[:, 2, :]
     f1 = a + b + c
     f2 = a**2 + b**2 + a * b + c * f1
@@ -178,9 +193,7 @@ def volume_and_centre(triangles: np.ndarray) -> tuple[float, np.ndarray]:
 def area_centroid(triangles: np.ndarray) -> np.ndarray:
     """The area-weighted mean of the triangles' centres (``float[m, 3, 3]`` corners), or
     their plain mean when every triangle is degenerate: trimesh's ``Trimesh.centroid``."""
-    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
-    crosses = np.cross(vectors[:, 0], vectors[:, 1])
-    areas = np.sqrt((crosses**2).sum(axis=1)) / 2.0
+    areas = np.sqrt((_crosses(triangles)**2).sum(axis=1)) / 2.0
     centres = triangles.mean(axis=1)
     if not areas.sum() > 0:
         return np.asarray(centres.mean(axis=0))

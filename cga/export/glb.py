@@ -49,6 +49,8 @@ import numpy as np
 from cga.appearance.material import Material
 from cga.errors import ExportError
 from cga.fsutil import atomic_write
+from cga.mesh import face_normals as unit_normals
+from cga.mesh import unitize
 from cga.model import FloorPlan, rotation_matrix
 from cga.scene import Scene, SceneNode
 from cga.semantics import class_names, instance_ids, node_class
@@ -66,11 +68,8 @@ _GENERATOR = "cga"
 """The glTF ``asset.generator``."""
 
 _ONES = [1.0, 1.0, 1.0]
-"""Sums the rows of a ``float[n, 3]`` as trimesh sums them, ``np.dot`` with ones (BLAS):
-the very call, so the rounding is trimesh's whatever order the BLAS kernel adds in."""
-
-_ZERO = float(np.finfo(np.float64).resolution * 100)
-"""A vector no longer than this has no direction (trimesh's ``util.TOL_ZERO``)."""
+"""Sums the rows of a ``float[n, 3]`` as trimesh sums them, ``np.dot`` with ones (BLAS),
+so the corner angles' rounding is trimesh's."""
 
 _FLAT_ANGLE = 1e-8
 """A triangle with a corner angle (radians) below this is degenerate and weighs nothing in
@@ -226,23 +225,13 @@ def _compact(faces: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
     return np.flatnonzero(used), renumbered[faces]
 
 
-def _unitize(vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Each row of ``vectors`` (``float[n, 3]``) at unit length, and which rows have a
-    length (longer than :data:`_ZERO`; the others are returned as they are): trimesh's
-    ``util.unitize``, its operations in its order, so the floats are its own."""
-    norm = np.sqrt(np.dot(vectors * vectors, _ONES))
-    valid = norm > _ZERO
-    norm[valid] **= -1
-    return vectors * norm.reshape((-1, 1)), valid
-
-
 def _corner_angles(corners: np.ndarray) -> np.ndarray:
     """The angle (radians) at each corner of each triangle (``float[m, 3, 3]`` corners),
     all three zero for a triangle with a (nearly) zero angle: trimesh's
     ``triangles.angles``."""
-    u = _unitize(corners[:, 1] - corners[:, 0])[0]
-    v = _unitize(corners[:, 2] - corners[:, 0])[0]
-    w = _unitize(corners[:, 2] - corners[:, 1])[0]
+    u = unitize(corners[:, 1] - corners[:, 0])[0]
+    v = unitize(corners[:, 2] - corners[:, 0])[0]
+    w = unitize(corners[:, 2] - corners[:, 1])[0]
     angles = np.zeros((len(corners), 3))
     angles[:, 0] = np.arccos(np.clip(np.dot(u * v, _ONES), -1, 1))
     angles[:, 1] = np.arccos(np.clip(np.dot(-u * w, _ONES), -1, 1))
@@ -256,7 +245,7 @@ def _vertex_normals(meshes: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[np.
     normals of the faces around each vertex weighted by their corner angles (Thürrner &
     Wüthrich 1998), as trimesh's ``Trimesh.vertex_normals`` computes it
     (``geometry.weighted_vertex_normals``), bit for bit: the same unit face normals and
-    corner angles (:func:`_unitize`, :func:`_corner_angles`), each vertex's sum taken over
+    corner angles (:func:`~cga.mesh.unitize`, :func:`_corner_angles`), each vertex's sum taken over
     its faces in ascending order from zero (trimesh's sparse product adds them in that
     order; :func:`numpy.bincount` adds its weights in order too), then made unit.
 
@@ -280,16 +269,14 @@ def _vertex_normals(meshes: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[np.
     normals = np.zeros((len(vertices), 3))
     if len(faces):
         corners = vertices[faces]
-        edges = corners[:, 1:] - corners[:, :2]
-        face_normals, valid = _unitize(np.cross(edges[:, 0], edges[:, 1]))
-        face_normals[~valid] = 0.0  # degenerate triangles: zero normals, as trimesh's
+        face_normals = unit_normals(corners)[0]  # degenerate triangles: zero, as trimesh's
         counted = (face_normals ** 2).sum(axis=1) > 0.5
         angles = _corner_angles(corners)[counted]
         terms = (angles[:, :, None] * face_normals[counted][:, None, :]).reshape(-1, 3)
         around = faces[counted].ravel()
         sums = np.column_stack([np.bincount(around, weights=terms[:, axis],
                                             minlength=len(vertices)) for axis in range(3)])
-        normals = _unitize(sums)[0]
+        normals = unitize(sums)[0]
         flat = np.linalg.norm(normals, axis=1) < 0.5
         if flat.any():
             has_faces = np.repeat([np.size(f) > 0 for _, f in meshes], counts)
@@ -568,7 +555,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
         else:
             # made unit once more, as trimesh's exporter did: that moves a fifth of the
             # float64s by an ulp, which could (in the demos never did) move a float32
-            primitives = _primitives(node, local[i], _unitize(normals[i])[0], gltf)
+            primitives = _primitives(node, local[i], unitize(normals[i])[0], gltf)
             mesh = gltf.mesh(node.item.model if node.item is not None else node.path,
                              primitives)
             if source is not None:
