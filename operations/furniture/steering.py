@@ -13,6 +13,8 @@ children (placed relative to their parent) and non-colliding items (rugs).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import shapely
 from shapely.geometry import Polygon
@@ -20,6 +22,9 @@ from shapely.geometry import Polygon
 __all__ = ["random_start", "separation_steering"]
 
 _GOLDEN_ANGLE = np.pi * (3 - np.sqrt(5))
+
+_FEW_ITEMS = 8
+"""Up to this many items the rounds run on Python floats (:func:`_rounds_few`)."""
 
 
 def _centre_bounds(polygon: Polygon, half_extents: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -100,7 +105,7 @@ def separation_steering(positions: np.ndarray, radii: np.ndarray, movable: np.nd
 
     Notes
     -----
-    Each round costs O(n²) for n items, all items moving at once (numpy); steering stops
+    Each round costs O(n²) for n items, all items moving at once; steering stops
     early at a fixed point (no item moves), which rounds after it would not change. Coincident
     items are pushed apart along a fixed, index-dependent direction, so the result is
     a pure function of the input.
@@ -121,12 +126,25 @@ def separation_steering(positions: np.ndarray, radii: np.ndarray, movable: np.nd
     step_limit = max_step if max_step is not None else 0.1 * np.hypot(maxx - minx, maxz - minz)
     angles = _GOLDEN_ANGLE * np.arange(n)
     fallback = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    rounds = _rounds_few if n <= _FEW_ITEMS else _rounds_many
+    return rounds(p, radii, movable, polygon, lo, hi, fallback, iterations,
+                  (cohesion, separation, float(step_limit)))
+
+
+_Weights = tuple[float, float, float]
+"""``(cohesion, separation, step_limit)`` of :func:`separation_steering`."""
+
+
+def _rounds_many(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon: Polygon,
+                 lo: np.ndarray, hi: np.ndarray, fallback: np.ndarray, iterations: int,
+                 weights: _Weights) -> np.ndarray:
+    """The steering rounds on ``p`` (changed in place) with all items moving at once."""
+    cohesion, separation, step_limit = weights
+    n = len(p)
     reach = radii[:, None] + radii[None, :]
     diagonal = np.eye(n, dtype=bool)
-    # The rooms hold a handful of items, so each round is a few dozen tiny array
-    # operations and numpy's call overhead dominates: the norms are written out as
-    # numpy.linalg.norm computes them and clips as the maximum and minimum they are,
-    # which gives the same floats with less overhead.
+    # the norms are written out as numpy.linalg.norm computes them and clips as the
+    # maximum and minimum they are: the same floats with less overhead per call
     for _ in range(iterations):
         delta = p[:, None, :] - p[None, :, :]  # i minus j
         distance = np.sqrt(np.add.reduce(delta * delta, axis=2))
@@ -151,3 +169,65 @@ def separation_steering(positions: np.ndarray, radii: np.ndarray, movable: np.nd
             break  # a fixed point: every further round would give the same positions
         np.copyto(p, proposal, where=take)
     return p
+
+
+def _rounds_few(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon: Polygon,
+                lo: np.ndarray, hi: np.ndarray, fallback: np.ndarray, iterations: int,
+                weights: _Weights) -> np.ndarray:
+    """:func:`_rounds_many` in Python floats, for a few items (a house's rooms steer two
+    to four).
+
+    Each of its few dozen array operations would cost more in numpy's call overhead than
+    the arithmetic, so the same operations are done on floats, in the order numpy does
+    them: sums over items run from the first item to the last (numpy reduces a
+    non-contiguous axis sequentially), an item's own term is ``+0.0``, and square roots,
+    maxima and minima are exact, so the positions are the same floats
+    (``tests/unit/furniture/test_furniture_steering.py`` compares the two).
+    """
+    cohesion, separation, step_limit = weights
+    n = len(p)
+    xs, zs = p[:, 0].tolist(), p[:, 1].tolist()
+    r, fall, take_ok = radii.tolist(), fallback.tolist(), movable.tolist()
+    (lox, loz), (hix, hiz) = lo.T.tolist(), hi.T.tolist()
+    for _ in range(iterations):
+        sum_x, sum_z = xs[0], zs[0]
+        for k in range(1, n):
+            sum_x += xs[k]
+            sum_z += zs[k]
+        new_x, new_z = [], []
+        for i in range(n):
+            push_x = push_z = 0.0
+            for j in range(n):
+                if j == i:
+                    term_x = term_z = 0.0
+                else:
+                    dx, dz = xs[i] - xs[j], zs[i] - zs[j]
+                    distance = math.sqrt(dx * dx + dz * dz)
+                    if distance > 1e-9:
+                        ux, uz = dx / distance, dz / distance
+                    else:
+                        ux, uz = fall[i]
+                    overlap = r[i] + r[j] - distance
+                    overlap = overlap if overlap >= 0.0 else 0.0
+                    term_x, term_z = ux * overlap, uz * overlap
+                if j == 0:
+                    push_x, push_z = term_x, term_z
+                else:
+                    push_x += term_x
+                    push_z += term_z
+            vx = cohesion * ((sum_x - xs[i]) / (n - 1) - xs[i]) + separation * push_x
+            vz = cohesion * ((sum_z - zs[i]) / (n - 1) - zs[i]) + separation * push_z
+            speed = math.sqrt(vx * vx + vz * vz)
+            scale = step_limit / (speed if speed >= 1e-12 else 1e-12)
+            scale = 1.0 if 1.0 <= scale else scale
+            x, z = xs[i] + vx * scale, zs[i] + vz * scale
+            x, z = (x if x >= lox[i] else lox[i]), (z if z >= loz[i] else loz[i])
+            new_x.append(x if x <= hix[i] else hix[i])
+            new_z.append(z if z <= hiz[i] else hiz[i])
+        inside = shapely.contains_xy(polygon, new_x, new_z).tolist()
+        take = [ok and within for ok, within in zip(take_ok, inside)]
+        if not any(t and (xs[i] != new_x[i] or zs[i] != new_z[i]) for i, t in enumerate(take)):
+            break  # a fixed point: every further round would give the same positions
+        xs = [x if t else old for x, old, t in zip(new_x, xs, take)]
+        zs = [z if t else old for z, old, t in zip(new_z, zs, take)]
+    return np.column_stack([xs, zs])

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
+from hypothesis import given, settings, strategies as st
 from shapely.geometry import Polygon, box
 
-from cga.operations.furniture.steering import random_start, separation_steering
+from cga.operations.furniture.steering import (_GOLDEN_ANGLE, _centre_bounds, _rounds_few,
+                                               _rounds_many, random_start, separation_steering)
 
 L_ROOM = Polygon([(0, 0), (6, 0), (6, 2), (2, 2), (2, 5), (0, 5)])
 
@@ -131,3 +133,27 @@ def test_steering_gives_the_same_floats_as_the_plain_formulation():
         got = separation_steering(start, radii, movable, room, half, iterations)
         want = plain_steering(start, radii, movable, room, half, iterations)
         assert got.tobytes() == want.tobytes(), case
+
+
+@settings(max_examples=300, deadline=None)
+@given(n=st.integers(2, 8), seed=st.integers(0, 2**32 - 1), iterations=st.integers(1, 12),
+       room=st.sampled_from([box(0, 0, 6, 5), box(0, 0, 1.5, 1.2), L_ROOM]),
+       coincident=st.booleans())
+def test_few_items_give_the_floats_numpy_gives(n, seed, iterations, room, coincident):
+    """The small-room rounds (Python floats) against the array rounds, bit for bit."""
+    rng = np.random.default_rng(seed)
+    half = rng.uniform(0.05, 0.8, size=(n, 2))
+    start = random_start(room, half, rng)
+    if coincident:
+        start[1:3] = start[0]
+    radii = rng.uniform(0.1, 1.5, size=n)
+    movable = rng.random(n) < 0.8
+    movable[0] = True
+    lo, hi = _centre_bounds(room, half)
+    angles = _GOLDEN_ANGLE * np.arange(n)
+    fallback = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    weights = (0.05, 0.5, float(rng.uniform(0.05, 1.0)))
+    args = (radii, movable, room, lo, hi, fallback, iterations, weights)
+    few = _rounds_few(start.copy(), *args)
+    many = _rounds_many(start.copy(), *args)
+    assert few.tobytes() == many.tobytes()
