@@ -55,20 +55,57 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
         the items were posed from; needed when ``nodes`` has furniture.
     """
     by_floor = {plan.index: plan for plan in plans}
+    faced = _faced_rooms(nodes, by_floor)
+    walls: dict[int, list[Material]] = {}
     parts: dict[str, _Parts] = {}
     out = []
-    for node in nodes:
+    for k, node in enumerate(nodes):
         floor = _floor_of(node.path)
         plan = by_floor.get(floor) if floor is not None else None
-        materials, index = _dress(node, plan, palette, models, parts)
+        if k in faced and plan is not None:
+            if plan.index not in walls:
+                walls[plan.index] = [_room_material(palette, "wall", plan, r)
+                                     for r in range(len(plan.rooms))]
+            materials, index = _wall(node, plan, palette, walls[plan.index], *faced[k])
+        else:
+            materials, index = _dress(node, plan, palette, models, parts)
         out.append(replace(node, **_compact(materials, index)))
     return out
+
+
+def _faced_rooms(nodes: Sequence[SceneNode], by_floor: dict[int, FloorPlan]
+                 ) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """For each wall node on a known floor (by its index in ``nodes``), the room each
+    face faces (:func:`_rooms_at` of a probe :data:`PROBE` in front of it) and whether
+    it faces the outside of the footprint.
+
+    A floor's walls are probed together: one point-in-polygon call per room and floor
+    instead of one per room and wall, whose overhead outweighed the few dozen points
+    a wall has (the answers, point by point, are the same).
+    """
+    per_floor: dict[int, list[int]] = {}
+    for k, node in enumerate(nodes):
+        floor = _floor_of(node.path)
+        if node.kind == "wall" and floor in by_floor:
+            per_floor.setdefault(floor, []).append(k)
+    faced = {}
+    for floor, members in per_floor.items():
+        plan = by_floor[floor]
+        probes = [nodes[k].mesh.triangles_center + nodes[k].mesh.face_normals * PROBE
+                  for k in members]
+        points = np.concatenate(probes)
+        rooms = _rooms_at(plan, points[:, [0, 2]])
+        outside = ~shapely.contains_xy(plan.footprint, points[:, 0], points[:, 2])
+        ends = np.cumsum([len(p) for p in probes])[:-1]
+        for k, room, out in zip(members, np.split(rooms, ends), np.split(outside, ends)):
+            faced[k] = (room, out)
+    return faced
 
 
 def _compact(materials: list[Material], index: np.ndarray) -> dict[str, Any]:
     """The materials the faces use, each once, in candidate order, and the faces'
     indices into them."""
-    used = set(np.unique(index).tolist())
+    used = set(np.flatnonzero(np.bincount(index, minlength=len(materials))).tolist())
     unique: dict[str, int] = {}
     order: list[Material] = []
     remap = np.zeros(len(materials), dtype=np.int64)
@@ -94,8 +131,6 @@ def _dress(node: SceneNode, plan: FloorPlan | None, palette: Palette,
     count = len(node.mesh.faces)
     if node.kind == "furniture" and node.item is not None and models is not None:
         return _furniture(node, plan, palette, models, parts)
-    if plan is not None and node.kind == "wall":
-        return _wall(node, plan, palette)
     if plan is not None and node.kind in ("slab", "roof"):
         return _slab(node, plan, palette)
     surface = {"stair": "stair", "rail": "rail", "mass": "mass", "face": "face"}.get(node.kind,
@@ -119,16 +154,14 @@ def _room_material(palette: Palette, surface: str, plan: FloorPlan, k: int) -> M
                            key=(f"floor{plan.index}", f"room{room.id}"))
 
 
-def _wall(node: SceneNode, plan: FloorPlan, palette: Palette) -> tuple[list[Material], np.ndarray]:
-    mesh = node.mesh
-    probes = mesh.triangles_center + mesh.face_normals * PROBE
-    rooms = _rooms_at(plan, probes[:, [0, 2]])
-    outside = ~shapely.contains_xy(plan.footprint, probes[:, 0], probes[:, 2])
+def _wall(node: SceneNode, plan: FloorPlan, palette: Palette, paints: list[Material],
+          rooms: np.ndarray, outside: np.ndarray) -> tuple[list[Material], np.ndarray]:
+    """A wall's faces: the paint of the room each faces (``paints``, one per room of
+    ``plan``), the facade outside, else the paint of the wall's first room."""
     own = [r for r in node.extras.get("rooms", []) if r >= 0]
     ids = [room.id for room in plan.rooms]
     default = ids.index(min(own)) if own and min(own) in ids else -1
-    materials = [_room_material(palette, "wall", plan, k) for k in range(len(plan.rooms))]
-    materials.append(palette.surface("facade"))
+    materials = [*paints, palette.surface("facade")]
     fallback = materials[default] if default >= 0 else palette.surface("wall")
     materials.append(fallback)
     index = np.where(rooms >= 0, rooms, len(materials) - 1)
