@@ -41,8 +41,8 @@ from cga.fsutil import atomic_write
 from cga.model import OUTSIDE, FloorPlan, FurnitureItem, Room, Wall
 from cga.scene import Scene, SceneNode
 
-from .drawing import (Arc, Area, Drawing, Point, Polyline, Style, Text, render_png, render_svg,
-                      text_width)
+from .drawing import (Arc, Area, Canvas, Drawing, Point, Polyline, Style, Text, render_png,
+                      render_svg, text_width)
 from .palette import hex_color, room_color
 from .plan_stairs import draw_stairs
 
@@ -157,6 +157,7 @@ def export_plans(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
                  name: str) -> list[Path]:
     """Write ``<name>.floor{N}.svg`` and ``<name>.floor{N}.png`` for every floor."""
     written = []
+    canvas = Canvas()
     for plan in scene.floors:
         storey = "ground floor" if plan.index == 0 else f"floor {plan.index}"
         typed = sum(1 for r in plan.rooms if r.type)
@@ -168,7 +169,7 @@ def export_plans(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
         drawing = plan_drawing(plan, title=f"{name} — {storey}", subtitle=subtitle)
         stem = f"{name}.floor{plan.index}"
         written.append(atomic_write(Path(out_dir) / f"{stem}.svg", render_svg(drawing)))
-        written.append(atomic_write(Path(out_dir) / f"{stem}.png", render_png(drawing)))
+        written.append(atomic_write(Path(out_dir) / f"{stem}.png", render_png(drawing, canvas=canvas)))
     return written
 
 
