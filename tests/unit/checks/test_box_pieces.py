@@ -4,6 +4,7 @@ splits give, in the same order."""
 from __future__ import annotations
 
 import numpy as np
+import shapely.affinity
 import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -142,3 +143,63 @@ def test_random_rectilinear_solids_are_tiled_by_boxes(solid):
     union = trimesh.boolean.union(meshes, engine="manifold") if len(meshes) > 1 else meshes[0]
     assert abs(sum(m.volume for m in meshes) - solid.volume) < 1e-6
     assert abs(union.volume - solid.volume) < 1e-6
+
+
+def _extruded(outline, thickness: float, axes: tuple[int, int, int]) -> trimesh.Trimesh:
+    """``outline`` extruded by ``thickness``, with the outline's x, y and the extrusion
+    placed on the world axes ``axes``: an exact permutation of coordinates (no rotation
+    to round them off the axes), with the triangles turned when it mirrors."""
+    solid = trimesh.creation.extrude_polygon(outline, thickness)
+    vertices = np.empty_like(solid.vertices)
+    vertices[:, list(axes)] = solid.vertices
+    faces = solid.faces if axes in ((0, 1, 2), (1, 2, 0), (2, 0, 1)) else solid.faces[:, ::-1]
+    return trimesh.Trimesh(vertices=vertices, faces=faces, process=False)
+
+
+@st.composite
+def _walls(draw) -> trimesh.Trimesh:
+    """A wall on a 0.1 m lattice, along x or z, with up to three doors (from the floor)
+    and windows through it, wall left between each two."""
+    length, height = draw(st.integers(10, 60)), draw(st.integers(12, 30))
+    count = draw(st.integers(0, 3))
+    sides = sorted(draw(st.lists(st.integers(1, length - 1), min_size=2 * count,
+                                 max_size=2 * count, unique=True)))
+    outline = Polygon([(0, 0), (length, 0), (length, height), (0, height)])
+    for x0, x1 in zip(sides[::2], sides[1::2]):
+        y0 = draw(st.one_of(st.just(0), st.integers(1, height - 3)))
+        y1 = draw(st.integers(y0 + 1, height - 1))
+        outline = outline.difference(Polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)]))
+    outline = shapely.affinity.scale(outline, 0.1, 0.1, origin=(0, 0))
+    thickness = 0.1 * draw(st.integers(1, 3))
+    return _extruded(outline, thickness, draw(st.sampled_from([(0, 1, 2), (2, 1, 0)])))
+
+
+@st.composite
+def _slabs(draw) -> trimesh.Trimesh:
+    """A slab on a 0.25 m lattice, 0.2 m thick (y up): an L, a U, or a rectangle with a
+    stair opening."""
+    width, depth = draw(st.integers(3, 12)), draw(st.integers(3, 12))
+    kind = draw(st.sampled_from(["L", "U", "opening"]))
+    x0 = draw(st.integers(1, width - (1 if kind == "L" else 2)))
+    x1 = width if kind == "L" else draw(st.integers(x0 + 1, width - 1))
+    z0 = draw(st.integers(1, depth - (2 if kind == "opening" else 1)))
+    z1 = draw(st.integers(z0 + 1, depth - 1)) if kind == "opening" else depth
+    cut = Polygon([(x0, z0), (x1, z0), (x1, z1), (x0, z1)])
+    outline = Polygon([(0, 0), (width, 0), (width, depth), (0, depth)]).difference(cut)
+    return _extruded(shapely.affinity.scale(outline, 0.25, 0.25, origin=(0, 0)), 0.2, (0, 2, 1))
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.one_of(_walls(), _slabs()))
+def test_random_walls_and_slabs_cut_like_manifold(solid):
+    """On walls with openings and slabs with notches the grid gives the pieces, in
+    their order, that manifold3d's plane splits give."""
+    assert solid.is_watertight and solid.volume > 0
+    grid, cut = box_pieces(solid), convex_pieces(solid)
+    assert grid is not None
+    assert cut is not None
+    assert len(grid) == len(cut)
+    for mine, theirs in zip(grid, cut):
+        bounds = [np.r_[np.min(p.vertices, axis=0), np.max(p.vertices, axis=0)]
+                  for p in (mine, theirs)]
+        assert np.allclose(bounds[0], bounds[1], rtol=0, atol=1e-6)
