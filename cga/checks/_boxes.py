@@ -94,6 +94,8 @@ def box_pieces(mesh: MeshLike) -> Sequence[MeshLike] | None:
     packed = np.packbits(cells, axis=0, bitorder="little").transpose(1, 2, 0).tolist()
     rows: _Rows = {(j, k): int.from_bytes(bytes(row), "little")
                    for j, line in enumerate(packed) for k, row in enumerate(line) if any(row)}
+    if not rows:  # nothing inside: not a solid this can read
+        return None
     whole = _Block(_Grid(grid), rows)
     if whole.convex:
         return [mesh]
