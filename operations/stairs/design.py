@@ -20,12 +20,12 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 import numpy as np
 import shapely
-from shapely.geometry import LineString, MultiPolygon, Point, Polygon
+from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.polygon import orient
 from shapely.ops import unary_union
 
@@ -59,13 +59,16 @@ class StairParams:
     def check(self) -> None:
         """Raise :class:`DerivationError` for parameters no stair can meet."""
         if self.kind not in ("straight", "U"):
-            raise DerivationError(f"stair must be one of 'U', 'straight', 'none', got {self.kind!r}")
+            raise DerivationError(
+                f"stair must be one of 'U', 'straight', 'none', got {self.kind!r}")
         if not 0.5 <= self.width <= 5.0:
             raise DerivationError(f"stair_width must be between 0.5 and 5 m, got {self.width:g}")
         if not 0.1 <= self.max_rise <= 0.25:
-            raise DerivationError(f"max_rise must be between 0.1 and 0.25 m, got {self.max_rise:g}")
+            raise DerivationError(
+                f"max_rise must be between 0.1 and 0.25 m, got {self.max_rise:g}")
         if not 0.15 <= self.min_going <= 0.5:
-            raise DerivationError(f"min_going must be between 0.15 and 0.5 m, got {self.min_going:g}")
+            raise DerivationError(
+                f"min_going must be between 0.15 and 0.5 m, got {self.min_going:g}")
 
 
 def design_risers(height: float, max_rise: float, kind: str) -> tuple[int, float]:
@@ -135,9 +138,14 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
     parts, leaves no new part narrower than ``min_width``, and the landing's long side
     faces the inside (it takes the door). Ranked: the landing touches a corridor over a
     door width, the core is not stretched, it stands against an outer wall, its landing
-    is nearest the footprint's centre; the pick among the best three is drawn from
-    ``rng``. O(edges × positions)
-    shapely tests.
+    is nearest the footprint's centre (ties in the order the candidates are made); the
+    pick among the best three is drawn from ``rng``.
+
+    Only the best three kept candidates matter, so every candidate is ranked first and
+    the costly tests (off the corridors, :meth:`_Room.fits`: two polygon overlays and an
+    opening) are made in rank order, once per rectangle, until three pass: the same
+    pick as testing them all, at a fraction of the tests. The rankings' own geometry is
+    computed for all candidates at once. O(edges × positions) shapely operations.
     """
     params.check()
     risers, rise = design_risers(storey_height, params.max_rise, params.kind)
@@ -147,63 +155,137 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
                      kind=params.kind, width=params.width, well=params.well,
                      landing_depth=depth, risers=risers, rise=rise, going=going,
                      storeys=storeys)
+    stair_breadth = core.interior_width + 2 * wall
     length = _up(core.interior_length + 2 * wall)
-    breadth = _up(core.interior_width + 2 * wall)
-    centre = footprint.centroid
+    breadth = _up(stair_breadth)
     free = _free_region(footprint, corridors)
     room = _Room.of(footprint, free, min_width)
-    corridor_edges = [c.boundary for c in corridors]
-    boundary = footprint.exterior
-    options: list[tuple[bool, bool, bool, float, StairCore]] = []
-    for a, b in _edges_to_stand_on(footprint, corridors):
-        edge = math.dist(a, b)
-        d = np.subtract(b, a) / edge if edge > 0 else np.zeros(2)
-        if edge < length - 1e-9 or min(abs(d[0]), abs(d[1])) > 1e-9:
-            continue
-        n = np.array([-d[1], d[0]])  # the inside lies to the left of a CCW edge
-        for s in _positions(edge, length, min_width):
-            corner = np.asarray(a) + d * s
-            for deep, hugs in _breadths(room.edges, corner, d, n, length, breadth, min_width,
-                                        core.interior_width + 2 * wall):
-                # rounded, so a core flush with a corner meets it exactly (3.01 + 5.39 is
-                # 8.399999999999999 in floating point)
-                rect = Polygon(np.round([corner, corner + d * length,
-                                         corner + d * length + n * deep, corner + n * deep], 9))
-                if any(rect.intersection(c).area > 1e-9 for c in corridors) or not room.fits(rect):
-                    continue
-                for flip, hug in itertools.product((False, True), hugs):
-                    u = -d if flip else d
-                    origin = corner + d * (length - wall if flip else wall) + n * (hug + wall)
-                    option = StairCore(polygon=orient(rect, sign=1.0),
-                                       origin=(float(origin[0]), float(origin[1])),
-                                       u=(float(u[0]), float(u[1])), v=(float(n[0]), float(n[1])),
-                                       kind=params.kind, width=params.width, well=params.well,
-                                       landing_depth=depth, risers=risers, rise=rise,
-                                       going=going, storeys=storeys)
-                    side = Point(option.at(depth / 2, core.interior_width + 2 * wall))
-                    if not footprint.contains(side):
-                        continue  # the landing's long side is an outer wall: no door there
-                    landing = Point(option.at(depth / 2, core.interior_width / 2))
-                    strip = _landing_strip(option, depth, wall)
-                    onto = any(strip.intersection(edge).length >= door_width
-                               for edge in corridor_edges)
-                    walled = rect.intersection(boundary).length > 1e-6
-                    options.append((not onto, deep > breadth, not walled,
-                                    landing.distance(centre), option))
-    if not options:
+    corners, along, across = _sites(footprint, corridors, length, min_width)
+    reaches = _reaches(room.edges, corners, along, across, length, breadth + min_width)
+    found = _Candidates.of(corners, along, across, reaches, length=length, breadth=breadth,
+                           min_width=min_width, stair_breadth=stair_breadth, wall=wall)
+    # the landing's long side is an outer wall: no door there
+    faces_in = shapely.contains(footprint, shapely.points(found.at(depth / 2, stair_breadth)))
+    keys = _ranks(found, np.flatnonzero(faces_in), footprint, corridors, depth=depth,
+                  wall=wall, door_width=door_width, interior_width=core.interior_width)
+    best: list[int] = []
+    passes: dict[int, bool] = {}
+    for k in sorted(keys, key=keys.__getitem__):
+        r = int(found.rect[k])
+        if r not in passes:
+            rect = found.rects[r]
+            passes[r] = (not any(rect.intersects(c) and rect.intersection(c).area > 1e-9
+                                 for c in corridors) and room.fits(rect))
+        if passes[r]:
+            best.append(k)
+            if len(best) == 3:
+                break
+    if not best:
         minx, minz, maxx, maxz = footprint.bounds
         raise DerivationError(
             f"no place for a {params.kind} stair core of {length:.2f} m x {breadth:.2f} m in a "
             f"{maxx - minx:.4g} m x {maxz - minz:.4g} m footprint with rooms at least "
             f"{min_width:g} m wide around it",
-            hint="give the building a larger lot, a narrower stair (stair_width), or stair = \"none\"")
-    options.sort(key=lambda o: o[:4])
-    return options[int(rng.integers(min(3, len(options))))][4]
+            hint="give the building a larger lot, a narrower stair (stair_width), "
+                 "or stair = \"none\"")
+    k = best[int(rng.integers(len(best)))]
+    origin, u, v = found.origin[k], found.u[k], found.v[k]
+    return replace(core, polygon=orient(found.rects[found.rect[k]], sign=1.0),
+                   origin=(float(origin[0]), float(origin[1])), u=(float(u[0]), float(u[1])),
+                   v=(float(v[0]), float(v[1])))
 
 
-def _landing_strip(core: StairCore, depth: float, wall: float) -> Polygon:
-    """The landing end of the core out to its walls' centre lines."""
-    return core.rect(-wall, depth, -wall, core.interior_width + wall).buffer(1e-6)
+@dataclass(frozen=True)
+class _Candidates:
+    """The candidate cores of :func:`place_core`, one row each in generation order: the
+    index of the core's rectangle in ``rects`` and its stair's frame (``origin``, ``u``,
+    ``v`` of :class:`StairCore`). ``stretched`` tells, by rectangle, a core deeper than
+    its stair's breadth."""
+
+    rects: np.ndarray
+    stretched: np.ndarray
+    rect: np.ndarray
+    origin: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+
+    @classmethod
+    def of(cls, corners: np.ndarray, along: np.ndarray, across: np.ndarray,
+           reaches: list[float], *, length: float, breadth: float, min_width: float,
+           stair_breadth: float, wall: float) -> "_Candidates":
+        """The cores standing at the sites ``corners`` (their edges' directions
+        ``along``, normals ``across``, the free region's ``reaches``), each as deep as
+        :func:`_breadths` tries, and on each rectangle the stair with its landing at
+        either end and against each side :func:`_breadths` gives."""
+        site: list[int] = []
+        deep: list[float] = []
+        rect: list[int] = []
+        flip: list[bool] = []
+        hug: list[float] = []
+        for k, reach in enumerate(reaches):
+            for breadth_k, hugs in _breadths(reach, breadth, min_width, stair_breadth):
+                for flip_k, hug_k in itertools.product((False, True), hugs):
+                    rect.append(len(site))
+                    flip.append(flip_k)
+                    hug.append(hug_k)
+                site.append(k)
+                deep.append(breadth_k)
+        sites = np.array(site, dtype=np.intp)
+        d, n, corner = along[sites], across[sites], corners[sites]
+        depths = np.array(deep)[:, None]
+        # rounded, so a core flush with a corner meets it exactly (3.01 + 5.39 is
+        # 8.399999999999999 in floating point)
+        rects = shapely.polygons(np.round(np.stack(
+            [corner, corner + d * length, corner + d * length + n * depths, corner + n * depths],
+            axis=1), 9))
+        on = np.array(rect, dtype=np.intp)
+        flips = np.array(flip, dtype=bool)
+        d, n = d[on], n[on]
+        offset = np.where(flips, length - wall, wall)[:, None]
+        origin = corner[on] + d * offset + n * (np.array(hug) + wall)[:, None]
+        return cls(rects=rects, stretched=np.array(deep) > breadth, rect=on, origin=origin,
+                   u=np.where(flips[:, None], -d, d), v=n)
+
+    def at(self, u: float, v: float) -> np.ndarray:
+        """Every candidate's plan point at core coordinates ``(u, v)``
+        (:meth:`StairCore.at`)."""
+        return self.origin + u * self.u + v * self.v
+
+
+def _ranks(found: _Candidates, keep: np.ndarray, footprint: Polygon,
+           corridors: Sequence[Polygon], *, depth: float, wall: float, door_width: float,
+           interior_width: float) -> dict[int, tuple[bool, bool, bool, float]]:
+    """The ranking keys of the candidates ``keep``, by candidate: the landing does not
+    open onto a corridor over a door width, the core is stretched, it does not touch the
+    outer wall, and its landing's distance to the footprint's centre (lowest first).
+
+    The overlays run only where they can meet anything: a landing whose bounding box
+    is more than a millimetre off a corridor's, or a core that does not touch the outer
+    wall, meets it in nothing (length 0)."""
+    onto = np.zeros(len(keep), dtype=bool)
+    if corridors:
+        # the landing end of the core out to its walls' centre lines (StairCore.rect)
+        ends = np.stack([found.at(a, b)[keep] for a, b in (
+            (-wall, -wall), (depth, -wall), (depth, interior_width + wall),
+            (-wall, interior_width + wall))], axis=1)
+        low, high = ends.min(axis=1), ends.max(axis=1)
+        for c in corridors:
+            x0, z0, x1, z1 = c.bounds
+            near = np.flatnonzero((low[:, 0] <= x1 + 1e-3) & (high[:, 0] >= x0 - 1e-3)
+                                  & (low[:, 1] <= z1 + 1e-3) & (high[:, 1] >= z0 - 1e-3))
+            strips = shapely.buffer(shapely.orient_polygons(shapely.polygons(ends[near])), 1e-6,
+                                    quad_segs=16)
+            onto[near] |= shapely.length(shapely.intersection(strips, c.boundary)) >= door_width
+    ring = footprint.exterior
+    shapely.prepare(ring)
+    touching = np.flatnonzero(shapely.intersects(found.rects, ring))
+    walled = np.zeros(len(found.rects), dtype=bool)
+    walled[touching] = shapely.length(shapely.intersection(found.rects[touching], ring)) > 1e-6
+    landing = shapely.points(found.at(depth / 2, interior_width / 2)[keep])
+    distance = shapely.distance(landing, footprint.centroid)
+    rect = found.rect[keep]
+    return {int(k): (not o, bool(found.stretched[r]), not walled[r], float(dist))
+            for k, o, r, dist in zip(keep, onto.tolist(), rect, distance)}
 
 
 def _positions(edge: float, length: float, min_width: float) -> list[float]:
@@ -220,10 +302,34 @@ def _positions(edge: float, length: float, min_width: float) -> list[float]:
     return sorted(out)
 
 
-def _breadths(edges: shapely.Geometry, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
-              length: float, breadth: float, min_width: float,
+def _sites(footprint: Polygon, corridors: Sequence[Polygon], length: float,
+           min_width: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(corners, along, across)``, one row per candidate position: the corner the core
+    stands at, the unit direction of its edge, and the normal into the free side, over
+    the axis-aligned edges (:func:`_edges_to_stand_on`) at least ``length`` long, at the
+    offsets :func:`_positions` gives."""
+    corners: list[np.ndarray] = []
+    along: list[np.ndarray] = []
+    across: list[np.ndarray] = []
+    for a, b in _edges_to_stand_on(footprint, corridors):
+        edge = math.dist(a, b)
+        d = np.subtract(b, a) / edge if edge > 0 else np.zeros(2)
+        if edge < length - 1e-9 or min(abs(d[0]), abs(d[1])) > 1e-9:
+            continue
+        n = np.array([-d[1], d[0]])  # the inside lies to the left of a CCW edge
+        for s in _positions(edge, length, min_width):
+            corners.append(np.asarray(a) + d * s)
+            along.append(d)
+            across.append(n)
+    if not corners:
+        return np.empty((0, 2)), np.empty((0, 2)), np.empty((0, 2))
+    return np.array(corners), np.array(along), np.array(across)
+
+
+def _breadths(reach: float, breadth: float, min_width: float,
               stair_breadth: float) -> list[tuple[float, tuple[float, ...]]]:
-    """``(breadth, offsets)`` to try for a core standing at ``corner`` along ``d``.
+    """``(breadth, offsets)`` to try for a core whose free region runs ``reach`` from
+    its edge (:func:`_reaches`).
 
     The core is its stair's breadth deep, or, where the free region beyond would be a
     strip narrower than a room (a corridor's bay of offices 4 m deep and a 2.5 m
@@ -231,27 +337,35 @@ def _breadths(edges: shapely.Geometry, corner: np.ndarray, d: np.ndarray, n: np.
     instead of a sliver. A stretched core's stair stands against either long side
     (``offsets`` from the edge), so its landing can face the corridor on either side.
     """
-    reach = _reach(edges, corner, d, n, length, breadth + min_width)
     if breadth + 1e-6 < reach < breadth + min_width - 1e-6:
         return [(breadth, (0.0,)), (reach, (0.0, reach - stair_breadth))]
     return [(breadth, (0.0,))]
 
 
-def _reach(edges: shapely.Geometry, corner: np.ndarray, d: np.ndarray, n: np.ndarray,
-           length: float, limit: float) -> float:
-    """How far the free region (whose boundary is ``edges``) runs from the edge along
-    ``n`` (at most ``limit``), the least over the core's two ends and middle."""
-    reach = limit
-    for t in (0.01, 0.5, 0.99):
-        start = corner + d * (t * length) + n * 1e-4
-        hits = LineString([start, start + n * limit]).intersection(edges)
-        for point in getattr(hits, "geoms", [hits]):
-            if not point.is_empty:
-                reach = min(reach, float(np.dot(np.asarray(point.coords[0]) - corner, n)))
-    return reach
+def _reaches(edges: shapely.Geometry, corners: np.ndarray, along: np.ndarray,
+             across: np.ndarray, length: float, limit: float) -> list[float]:
+    """How far the free region (whose boundary is ``edges``) runs from each site's edge
+    along its normal ``across`` (at most ``limit``), the least over the core's two ends
+    and middle. Only the rays that cross ``edges`` (best prepared) are overlaid."""
+    t = np.array([0.01, 0.5, 0.99])
+    starts = (corners[:, None] + along[:, None] * (t * length)[:, None]
+              + across[:, None] * 1e-4)
+    lines = shapely.linestrings(np.stack([starts, starts + across[:, None] * limit], axis=2)
+                                .reshape(-1, 2, 2))
+    crossing = np.flatnonzero(shapely.intersects(lines, edges))
+    parts, line = shapely.get_parts(shapely.intersection(lines[crossing], edges),
+                                    return_index=True)
+    line = crossing[line]
+    coords, part = shapely.get_coordinates(parts, return_index=True)
+    first = np.flatnonzero(np.r_[True, part[1:] != part[:-1]]) if len(part) else part
+    reaches = [limit] * len(corners)
+    for point, site in zip(coords[first], line[part[first]] // 3):
+        reaches[site] = min(reaches[site], float(np.dot(point - corners[site], across[site])))
+    return reaches
 
 
-def _edges_to_stand_on(footprint: Polygon, corridors: Sequence[Polygon]) -> list[tuple[Point2, Point2]]:
+def _edges_to_stand_on(footprint: Polygon,
+                       corridors: Sequence[Polygon]) -> list[tuple[Point2, Point2]]:
     """Edges a core may stand along, each with the free side on its left: the
     footprint's edges (counter-clockwise) and the corridors' edges (clockwise, so the
     left is outside the corridor)."""
@@ -281,9 +395,11 @@ class _Room:
 
     @classmethod
     def of(cls, footprint: Polygon, free: Polygon | MultiPolygon, min_width: float) -> "_Room":
+        edges = free.boundary
+        shapely.prepare(edges)
         return cls(outline=footprint.buffer(1e-7), free=free, free_parts=_parts(free),
                    free_narrow=_narrow_area(free, min_width), min_width=min_width,
-                   edges=free.boundary)
+                   edges=edges)
 
     def fits(self, rect: Polygon) -> bool:
         """The core lies inside, cuts the free region into no more parts than it had,
