@@ -363,7 +363,7 @@ def _furniture(plan: FloorPlan, item: FurnitureItem, labels: dict[str, dict[str,
     turns = item.rotation % 4
     x, z = item.position
     y = plan.floor_y + item.elevation
-    min_x, min_z, max_x, max_z = item.footprint().bounds
+    min_x, min_z, max_x, max_z = _footprint_bounds(item)
     path = f"floor{plan.index}/{plan.room(item.room).label}/furniture/{item.name}"
     bbox = {"min": [min_x, y, min_z], "max": [max_x, y + item.size[1], max_z]}
     if path in leaves:  # a door leaf stands where its hinge and angle put it
@@ -386,6 +386,19 @@ def _furniture(plan: FloorPlan, item: FurnitureItem, labels: dict[str, dict[str,
         "node": path if path in labels else None,
         **labels.get(path, {"class_id": None, "class": None, "instance_id": None}),
     }
+
+
+def _footprint_bounds(item: FurnitureItem) -> tuple[float, float, float, float]:
+    """``item.footprint().bounds``, for an item on quarter turns without making the
+    polygon: its half sizes, swapped on odd turns, about its position. The same floats,
+    because shapely rotates quarter turns exactly (it rounds their cosine and sine to
+    0 and ±1)."""
+    if item.yaw:
+        return item.footprint().bounds
+    w, _, d = item.size
+    half_x, half_z = (w / 2, d / 2) if item.rotation % 2 == 0 else (d / 2, w / 2)
+    x, z = item.position
+    return (x - half_x, z - half_z, x + half_x, z + half_z)
 
 
 def _graph_edges(plan: FloorPlan) -> Iterable[dict[str, Any]]:

@@ -13,7 +13,9 @@ from hypothesis import given, settings, strategies as st
 
 import cga
 from cga.errors import ExportError
-from cga.export.scene_json import export_scene_json, json_text, load_schema, scene_json_text
+from cga.export.scene_json import (_footprint_bounds, export_scene_json, json_text, load_schema,
+                                   scene_json_text)
+from cga.model import FurnitureItem
 from reports import FixedReport
 
 
@@ -181,3 +183,17 @@ def test_unfit_value_deep_in_a_list_is_named_by_its_path(small_scene):
         details={"items": [{"ok": 1.0}, {"ok": float("inf")}], "when": object()})})
     with pytest.raises(ExportError, match=r"checks\.physics\.(items\[1\]\.ok|when) "):
         scene_json_text(bad, nodes)
+
+
+_COORD = st.floats(-500, 500, allow_nan=False, allow_infinity=False)
+_SIZE = st.floats(0.01, 9, allow_nan=False, allow_infinity=False)
+
+
+@settings(max_examples=400, deadline=None)
+@given(x=_COORD, z=_COORD, w=_SIZE, d=_SIZE, rotation=st.integers(-5, 9),
+       yaw=st.sampled_from([0.0, 0.3, -1.2]))
+def test_furniture_bounds_are_the_footprints_bounds(x, z, w, d, rotation, yaw):
+    """The bbox written for an item is its shapely footprint's bounds, float for float."""
+    item = FurnitureItem(name="t", model="m", room=0, position=(x, z), rotation=rotation,
+                         size=(w, 0.8, d), yaw=yaw)
+    assert _footprint_bounds(item) == item.footprint().bounds
