@@ -108,10 +108,22 @@ class Edge:
         return (min(self.start[i], self.end[i]), max(self.start[i], self.end[i]))
 
     def distance_to(self, point: tuple[float, float]) -> float:
-        p, a = np.asarray(point, dtype=float), np.asarray(self.start, dtype=float)
-        d = np.subtract(self.end, self.start)
-        t = np.clip(np.dot(p - a, d) / np.dot(d, d), 0.0, 1.0)
-        return float(np.linalg.norm(p - (a + t * d)))
+        """The distance from ``point`` to the nearest point of the edge.
+
+        Plain float arithmetic: the wall search sorts every edge by it for each item, and
+        numpy's cost per call on 2-vectors dominated. The operations are those of the
+        numpy form ``norm(p - (a + clip(dot(p - a, d) / dot(d, d), 0, 1) * d))`` in the
+        same order (``dot`` and ``norm`` of two components: two products and one sum,
+        then a square root), so the floats are the same: checked to the bit on millions
+        of random edges and points (numpy's ``dot`` of two components fuses no
+        multiply-add), and by the tests.
+        """
+        ax, az = self.start
+        dx, dz = self.end[0] - ax, self.end[1] - az
+        px, pz = float(point[0]), float(point[1])
+        t = min(max(((px - ax) * dx + (pz - az) * dz) / (dx * dx + dz * dz), 0.0), 1.0)
+        vx, vz = px - (ax + t * dx), pz - (az + t * dz)
+        return math.sqrt(vx * vx + vz * vz)
 
 
 @dataclass(frozen=True)

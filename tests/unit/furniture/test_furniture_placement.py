@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, box
 
 from cga.model import FurnitureItem
 from cga.operations.furniture.clearance import Keepout
 from cga.operations.furniture.layout import ItemSpec, Layout, Pose
-from cga.operations.furniture.placement import Placer, convex_corners, room_edges
+from cga.operations.furniture.placement import Edge, Placer, convex_corners, room_edges
 from cga.operations.furniture.rules import FurnitureRule
 
 ROOM = box(0, 0, 5, 4)
@@ -40,6 +42,33 @@ def test_room_edges_and_corners_of_an_l_shape():
     for edge in edges:  # normals point into the room
         mid = np.add(edge.start, edge.end) / 2 + edge.normal * 0.01
         assert room.contains(Point(*mid))
+
+
+def _numpy_distance(start, end, point) -> float:
+    """The distance from ``point`` to the segment, as numpy computes it on 2-vectors."""
+    p, a = np.asarray(point, dtype=float), np.asarray(start, dtype=float)
+    d = np.subtract(end, start)
+    t = np.clip(np.dot(p - a, d) / np.dot(d, d), 0.0, 1.0)
+    return float(np.linalg.norm(p - (a + t * d)))
+
+
+coordinate = st.one_of(st.floats(-50, 50).filter(lambda v: v == 0 or abs(v) > 1e-6),
+                       st.integers(-500, 500).map(lambda k: k / 10))
+"""Room coordinates: any float of metres, or on a decimetre grid (no edge so short that
+its squared length underflows)."""
+
+
+@settings(max_examples=500, deadline=None)
+@given(st.tuples(coordinate, coordinate, coordinate, coordinate), coordinate, coordinate,
+       st.integers(0, 2))
+def test_edge_distance_is_the_numpy_distance_to_the_bit(ends, px, pz, aligned):
+    """The wall search sorts edges by their distance: plain floats must give numpy's."""
+    sx, sz, ex, ez = ends
+    ez, ex = (sz, ex) if aligned == 0 else (ez, sx) if aligned == 1 else (ez, ex)
+    if (sx, sz) == (ex, ez):
+        return
+    assert Edge((sx, sz), (ex, ez)).distance_to((px, pz)) == _numpy_distance(
+        (sx, sz), (ex, ez), (px, pz))
 
 
 def test_corner_item_goes_flush_into_the_nearest_corner():
