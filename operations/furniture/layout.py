@@ -54,6 +54,8 @@ _MAX_PARTS = 8
 """More than the parts of an envelope (a body and four clearance boxes)."""
 _FEW_HITS = 16
 """Up to this many obstacles met, a query tests them one by one; past it, with numpy."""
+_KEPT_POSES = 4096
+"""Poses whose parts an item keeps (:meth:`ItemSpec.parts_at`); past it they are dropped."""
 
 
 @dataclass(frozen=True)
@@ -84,6 +86,21 @@ class ItemSpec:
         """The boxes of :meth:`parts` as a ``(parts, 4)`` array (made once per shape)."""
         return self._boxes[rotation % 4]
 
+    def parts_at(self, rotation: int, x: float, z: float) -> PartsAt:
+        """The parts at ``(x, z)`` turned by ``rotation`` (no free yaw), made once per
+        pose: the solver tests most poses more than once (a spot for item after item,
+        a child's spot for each candidate pose of its parent) and adds the ones it
+        tested, and shapely boxes cost more than the look-up."""
+        key = (rotation % 4, x, z)
+        found = self._poses.get(key)
+        if found is None:
+            if len(self._poses) >= _KEPT_POSES:
+                self._poses.clear()
+            shapes = _part_boxes(self.boxes(rotation), x, z)
+            shapes.flags.writeable = False
+            found = self._poses[key] = PartsAt(shapes, shapely.bounds(shapes), {})
+        return found
+
     # the solver asks for an item's parts thousands of times: kept on the item, so a call
     # is a tuple index rather than a cache look-up keyed by six numbers
     @cached_property
@@ -98,6 +115,22 @@ class ItemSpec:
         return tuple(_envelope_boxes(self.width, self.depth, rotation, r.clearance_front,
                                      r.clearance_back, r.clearance_side)
                      for rotation in range(4))
+
+    @cached_property
+    def _poses(self) -> dict[tuple[int, float, float], PartsAt]:
+        return {}
+
+
+@dataclass(frozen=True)
+class PartsAt:
+    """An item's parts at one pose without a free yaw (:meth:`ItemSpec.parts_at`)."""
+
+    shapes: np.ndarray
+    """The parts as shapely boxes shrunk by :data:`EPS` (:func:`_part_boxes`)."""
+    bounds: np.ndarray
+    """Their bounds, ``(parts, 4)``."""
+    blocks: dict[int, ObstacleBlock]
+    """The obstacles they make in a layout, by the item's id there (:meth:`Layout.add`)."""
 
 
 @lru_cache(maxsize=4096)
@@ -172,14 +205,18 @@ def _part_boxes(boxes: np.ndarray, x: float, z: float) -> np.ndarray:
     return shapely.box(b[:, 0], b[:, 1], b[:, 2], b[:, 3])
 
 
-def _part_shapes(boxes: np.ndarray, pose: Pose) -> np.ndarray:
+def _part_shapes(spec: ItemSpec, pose: Pose) -> np.ndarray:
+    """The parts of ``spec`` placed at ``pose`` (shrunk by :data:`EPS`)."""
+    if not pose.yaw:
+        return spec.parts_at(pose.rotation, pose.x, pose.z).shapes
+    return _turned(spec.boxes(pose.rotation), pose)
+
+
+def _turned(boxes: np.ndarray, pose: Pose) -> np.ndarray:
     """The part ``boxes`` placed at ``pose`` (shrunk by :data:`EPS`), turned by its free
     yaw about the item's centre (the sense of :meth:`cga.model.FurnitureItem.footprint`)."""
-    boxes = _part_boxes(boxes, pose.x, pose.z)
-    if not pose.yaw:
-        return boxes
     return np.array([affinity.rotate(b, -pose.yaw, origin=(pose.x, pose.z), use_radians=True)
-                     for b in boxes], dtype=object)
+                     for b in _part_boxes(boxes, pose.x, pose.z)], dtype=object)
 
 
 def _footprint(spec: ItemSpec, pose: Pose) -> Box:
@@ -188,7 +225,7 @@ def _footprint(spec: ItemSpec, pose: Pose) -> Box:
     obstacle, never a smaller one)."""
     b = spec.parts(pose.rotation)[0].box
     if pose.yaw:
-        minx, minz, maxx, maxz = _part_shapes(spec.boxes(pose.rotation)[:1], pose)[0].bounds
+        minx, minz, maxx, maxz = _turned(spec.boxes(pose.rotation)[:1], pose)[0].bounds
         return (minx - EPS, minz - EPS, maxx + EPS, maxz + EPS)
     return (pose.x + b[0], pose.z + b[1], pose.x + b[2], pose.z + b[3])
 
@@ -291,14 +328,30 @@ class Layout:
         """Place ``spec`` at ``pose`` (no check; call :meth:`conflicts` first)."""
         self.placed[spec.name] = (spec, pose)
         if not spec.rule.non_collision:
-            parts = spec.parts(pose.rotation)
             self._footprints[spec.name] = _footprint(spec, pose)
-            shapes = _part_shapes(spec.boxes(pose.rotation), pose)
-            self._item_blocks[spec.name] = self._block(
-                [BODY if part.is_body else CLEARANCE for part in parts],
-                [spec.name] * len(parts), shapes,
-                None if pose.yaw else shapely.bounds(shapes))
+            self._item_blocks[spec.name] = (
+                self._item_block(spec, pose.rotation, _turned(spec.boxes(pose.rotation), pose),
+                                 None) if pose.yaw else self._placed_block(spec, pose))
         self._changed()
+
+    def _placed_block(self, spec: ItemSpec, pose: Pose) -> ObstacleBlock:
+        """The obstacles of ``spec`` at ``pose`` without a free yaw, made once per pose
+        and item id (the solver adds a parent at the same pose again and again while it
+        seats the family, :meth:`.placement.Placer._commit`)."""
+        parts = spec.parts_at(pose.rotation, pose.x, pose.z)
+        owner = self._id(spec.name)
+        block = parts.blocks.get(owner)
+        if block is None:
+            block = parts.blocks[owner] = self._item_block(spec, pose.rotation, parts.shapes,
+                                                            parts.bounds)
+        return block
+
+    def _item_block(self, spec: ItemSpec, rotation: int, shapes: np.ndarray,
+                    bounds: np.ndarray | None) -> ObstacleBlock:
+        """The parts ``shapes`` of ``spec`` as obstacles (``bounds``: see :meth:`_block`)."""
+        parts = spec.parts(rotation)
+        return self._block([BODY if part.is_body else CLEARANCE for part in parts],
+                           [spec.name] * len(parts), shapes, bounds)
 
     def remove(self, name: str) -> tuple[ItemSpec, Pose]:
         """Take an item out again; returns what it was."""
@@ -377,7 +430,7 @@ class Layout:
         """
         index = self._index()
         parts = spec.parts(pose.rotation)
-        geometries = _part_shapes(spec.boxes(pose.rotation), pose)
+        geometries = _part_shapes(spec, pose)
         found: list[Conflict] = []
         part_rows, rows = index.hits(geometries, boxes=not pose.yaw)
         if len(rows):

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Point, Polygon, box
@@ -171,3 +172,58 @@ def test_a_strip_along_a_crowded_row_finds_every_gap():
     assert len(intervals) == 39 > layout_module._FEW_HITS  # numpy's part
     for k, (a, b) in enumerate(intervals):  # a 0.2 m item fits each gap exactly
         assert a == pytest.approx(0.5 + 0.5 * k, abs=1e-5) and b == pytest.approx(a, abs=1e-5)
+
+
+pose_pool = st.tuples(st.integers(0, 5), st.sampled_from([0.5, 1.25, 2.0, 3.1, 4.75]),
+                      st.sampled_from([0.5, 1.0, 2.5, 3.3]))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(pose_pool, min_size=1, max_size=30), st.floats(0.3, 1.6), st.floats(0.3, 1.2),
+       st.floats(0, 0.4), st.floats(0, 0.3))
+def test_the_parts_kept_per_pose_are_those_made_afresh(poses, w, d, front, side):
+    spec = _spec("item", w, d, front=front, side=side)
+    for rotation, x, z in poses:  # few poses: most asked again
+        parts = spec.parts_at(rotation, x, z)
+        b = spec.boxes(rotation) + np.array([x + EPS, z + EPS, x - EPS, z - EPS])
+        fresh = shapely.box(b[:, 0], b[:, 1], b[:, 2], b[:, 3])
+        assert shapely.equals_exact(parts.shapes, fresh, tolerance=0).all()
+        assert np.array_equal(parts.bounds, shapely.bounds(fresh))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 1), st.lists(item, min_size=2, max_size=16), item, st.booleans(),
+       st.randoms(use_true_random=False))
+def test_items_taken_out_and_put_back_block_as_before(room_index, items, candidate, windows,
+                                                     random):
+    """Adding an item at a pose it stood at before reuses its obstacles."""
+    layout, placed = _layout(room_index, items, windows)
+    moved = random.sample(placed, random.randint(1, len(placed)))
+    for spec, _ in moved:
+        layout.remove(spec.name)
+    for spec, pose in moved:  # back in another order: the same poses, new rows
+        layout.add(spec, pose)
+    w, d, front, side, rug, window, x, z, rotation = candidate
+    spec = _spec("new", w, d, front=front, side=side, rug=rug, window=window)
+    related = frozenset({"item1"}) if len(items) > 1 else frozenset()
+    pose = Pose(x, z, rotation)
+    found = layout.conflicts(spec, pose, related)
+    assert bool(found) == brute_blocked(ROOMS[room_index], placed, spec, pose, related,
+                                        windows)
+    fresh, _ = _layout(room_index, [], windows)
+    for spec_, pose_ in [p for p in placed if p not in moved] + moved:
+        fresh.add(spec_, pose_)
+    assert found == fresh.conflicts(spec, pose, related)
+
+
+def test_an_item_kept_at_a_pose_is_owned_by_its_own_name_in_each_layout():
+    a, b = _spec("a", 1.0, 1.0), _spec("b", 1.0, 1.0)
+    first = Layout(ROOMS[0])
+    first.add(a, Pose(3.0, 2.5, 0))
+    first.add(b, Pose(4.5, 2.5, 0))
+    second = Layout(ROOMS[0])  # the other order: other ids for the same names
+    second.add(b, Pose(4.5, 2.5, 0))
+    second.add(a, Pose(3.0, 2.5, 0))
+    for layout in (first, second):
+        assert [c.blocker for c in layout.conflicts(b, Pose(3.2, 2.5, 0))] == ["a"]
+        assert [c.blocker for c in layout.conflicts(a, Pose(4.3, 2.5, 0))] == ["b"]
