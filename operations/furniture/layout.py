@@ -31,7 +31,7 @@ share an edge and a wall item may stand flush against its wall.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
@@ -55,7 +55,10 @@ _MAX_PARTS = 8
 _FEW_HITS = 16
 """Up to this many obstacles met, a query tests them one by one; past it, with numpy."""
 _KEPT_POSES = 4096
-"""Poses whose parts an item keeps (:meth:`ItemSpec.parts_at`); past it they are dropped."""
+"""Poses (and segments) whose parts an item keeps (:meth:`ItemSpec.parts_at`,
+:meth:`ItemSpec.strips`); past it they are dropped."""
+_KEPT_INDEXES = 256
+"""Obstacle indexes a room's layouts keep (:meth:`Layout._index`)."""
 
 
 @dataclass(frozen=True)
@@ -98,7 +101,19 @@ class ItemSpec:
                 self._poses.clear()
             shapes = _part_boxes(self.boxes(rotation), x, z)
             shapes.flags.writeable = False
-            found = self._poses[key] = PartsAt(shapes, shapely.bounds(shapes), {})
+            found = self._poses[key] = PartsAt(shapes)
+        return found
+
+    def strips(self, rotation: int, axis: int, fixed: float, lo: float, hi: float) -> Strips:
+        """The strips the parts sweep with the centre sliding along ``axis`` from ``lo``
+        to ``hi`` (:meth:`Layout.free_intervals`), made once per segment: the solver
+        sweeps most segments more than once (the same wall for item after item)."""
+        key = (rotation % 4, axis, fixed, lo, hi)
+        found = self._strips.get(key)
+        if found is None:
+            if len(self._strips) >= _KEPT_POSES:
+                self._strips.clear()
+            found = self._strips[key] = Strips.make(self.boxes(rotation), axis, fixed, lo, hi)
         return found
 
     # the solver asks for an item's parts thousands of times: kept on the item, so a call
@@ -120,6 +135,10 @@ class ItemSpec:
     def _poses(self) -> dict[tuple[int, float, float], PartsAt]:
         return {}
 
+    @cached_property
+    def _strips(self) -> dict[tuple[int, int, float, float, float], Strips]:
+        return {}
+
 
 @dataclass(frozen=True)
 class PartsAt:
@@ -127,10 +146,38 @@ class PartsAt:
 
     shapes: np.ndarray
     """The parts as shapely boxes shrunk by :data:`EPS` (:func:`_part_boxes`)."""
+    blocks: dict[int, ObstacleBlock] = field(default_factory=dict)
+    """The obstacles they make in a layout, by the item's id there (:meth:`Layout.add`)."""
+
+    @cached_property
+    def bounds(self) -> np.ndarray:
+        """The bounds of :attr:`shapes`, ``(parts, 4)`` (made when the item is added)."""
+        return shapely.bounds(self.shapes)
+
+
+@dataclass(frozen=True)
+class Strips:
+    """The strips an item's parts sweep along one segment (:meth:`ItemSpec.strips`)."""
+
+    shapes: np.ndarray
+    """Per part, the box its centre line sweeps, shrunk by :data:`EPS` across."""
     bounds: np.ndarray
     """Their bounds, ``(parts, 4)``."""
-    blocks: dict[int, ObstacleBlock]
-    """The obstacles they make in a layout, by the item's id there (:meth:`Layout.add`)."""
+    rows: list[list[float]]
+    """:attr:`bounds` as lists."""
+
+    @classmethod
+    def make(cls, boxes: np.ndarray, axis: int, fixed: float, lo: float, hi: float
+             ) -> "Strips":
+        a0, a1 = (boxes[:, 0], boxes[:, 2]) if axis == 0 else (boxes[:, 1], boxes[:, 3])
+        p0, p1 = (boxes[:, 1], boxes[:, 3]) if axis == 0 else (boxes[:, 0], boxes[:, 2])
+        along = (lo + a0, hi + a1)
+        across = (fixed + p0 + EPS, fixed + p1 - EPS)
+        shapes = (shapely.box(along[0], across[0], along[1], across[1]) if axis == 0
+                  else shapely.box(across[0], along[0], across[1], along[1]))
+        shapes.flags.writeable = False
+        bounds = shapely.bounds(shapes)
+        return cls(shapes, bounds, bounds.tolist())
 
 
 @lru_cache(maxsize=4096)
@@ -292,6 +339,7 @@ class Layout:
         self._footprints: dict[str, Box] = {}
         self._obstacle_set: frozenset[Box] | None = None
         self._obstacles: ObstacleIndex | None = None
+        self._indexes: dict[tuple[ObstacleBlock, ...], ObstacleIndex] = {}
         self._window_zones: dict[str, list[tuple[str, Polygon]]] = {}
 
     def emptied(self) -> "Layout":
@@ -370,9 +418,19 @@ class Layout:
 
     def _index(self) -> ObstacleIndex:
         """The obstacles in the order the old one-by-one scan met them: walls, door
-        zones, then the items in the order they were (last) added."""
+        zones, then the items in the order they were (last) added.
+
+        Kept by its blocks for the layouts of the room (:meth:`emptied` shares them):
+        half the states a house's solver queries it had queried before (a parent at a
+        pose tried again, a family taken out and put back)."""
         if self._obstacles is None:
-            self._obstacles = ObstacleIndex([self._static, *self._item_blocks.values()])
+            blocks = (self._static, *self._item_blocks.values())
+            index = self._indexes.get(blocks)
+            if index is None:
+                if len(self._indexes) >= _KEPT_INDEXES:
+                    self._indexes.clear()
+                index = self._indexes[blocks] = ObstacleIndex(blocks)
+            self._obstacles = index
         return self._obstacles
 
     def _obstacles_without(self, name: str) -> frozenset[Box]:
@@ -490,14 +548,10 @@ class Layout:
         index = self._index()
         boxes = spec.boxes(rotation)
         a0, a1 = (boxes[:, 0], boxes[:, 2]) if axis == 0 else (boxes[:, 1], boxes[:, 3])
-        p0, p1 = (boxes[:, 1], boxes[:, 3]) if axis == 0 else (boxes[:, 0], boxes[:, 2])
-        along = (lo + a0, hi + a1)
-        across = (fixed + p0 + EPS, fixed + p1 - EPS)
-        strips = (shapely.box(along[0], across[0], along[1], across[1]) if axis == 0
-                  else shapely.box(across[0], along[0], across[1], along[1]))
+        swept = spec.strips(rotation, axis, fixed, lo, hi)
+        strips, strip_bounds = swept.shapes, swept.bounds
         part_rows, rows = index.hits(strips, boxes=True)
         windows = [zone for _, zone in self._windows_for(spec) if zone.intersects(strips[0])]
-        strip_bounds = shapely.bounds(strips)
         # in any order: the complement sorts the spans
         if len(rows) > _FEW_HITS:
             rows, part_rows = self._blocking_rows(index, spec, part_rows, rows, related)
@@ -507,7 +561,7 @@ class Layout:
         if (len(rows) if hits is None else len(hits)) + len(windows) <= _FEW_HITS:
             if hits is None:
                 hits = list(zip(rows.tolist(), part_rows.tolist()))
-            spans = self._spans_few(index, hits, windows, strips, strip_bounds.tolist(), axis)
+            spans = self._spans_few(index, hits, windows, strips, swept.rows, axis)
             return _complement_few([(s0 - a1[i], s1 - a0[i]) for i, s0, s1 in spans], lo, hi)
         if hits is not None:
             rows = np.array([row for row, _ in hits], dtype=np.int64)

@@ -12,7 +12,8 @@ among them with bounds arithmetic.
 
 The index is immutable: a layout builds one per state from :class:`ObstacleBlock`\\ s
 (the walls and door zones, then one block per placed item) that it keeps between
-states, so a rebuild concatenates arrays and builds one tree.
+states, so a rebuild concatenates arrays and builds one tree; and it keeps the index of
+each tuple of blocks, as the solver comes back to the same states again and again.
 """
 
 from __future__ import annotations
@@ -32,10 +33,11 @@ KINDS = ("wall", "body", "clearance", "door")
 """Obstacle kind names by code (the ``kind`` of :class:`~.layout.Conflict`)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class ObstacleBlock:
     """Obstacles that come and go together: a room's walls and door zones, or the body
-    and clearance boxes of one placed item (:meth:`make`)."""
+    and clearance boxes of one placed item (:meth:`make`). Equal only to itself: a
+    layout keeps an index per tuple of blocks."""
 
     columns: np.ndarray
     """``(n, 3)`` integers per obstacle: ``2 * kind`` (the row of :data:`_BLOCKED_BY`

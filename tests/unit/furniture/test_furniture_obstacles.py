@@ -227,3 +227,62 @@ def test_an_item_kept_at_a_pose_is_owned_by_its_own_name_in_each_layout():
     for layout in (first, second):
         assert [c.blocker for c in layout.conflicts(b, Pose(3.2, 2.5, 0))] == ["a"]
         assert [c.blocker for c in layout.conflicts(a, Pose(4.3, 2.5, 0))] == ["b"]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 1), st.lists(item, min_size=2, max_size=6),
+       st.lists(st.tuples(st.integers(0, 5), st.integers(0, 2), st.booleans()), max_size=40),
+       item, st.integers(0, 1), st.booleans())
+def test_a_layout_back_in_an_earlier_state_answers_as_a_fresh_one(room_index, items, steps,
+                                                                   candidate, axis, windows):
+    """Layouts keep an obstacle index per state, the window strips and every item's
+    parts and strips: each answer is the one of a layout built afresh."""
+    specs = [_spec(f"item{k}", w, d, front=front, side=side, window=window)
+             for k, (w, d, front, side, _, window, *_) in enumerate(items)]
+    poses = [[Pose(x + shift, z, rotation) for shift in (0.0, 0.5, -0.5)]
+             for *_, x, z, rotation in items]
+    layout, _ = _layout(room_index, [], windows)
+    w, d, front, side, rug, window, x, z, rotation = candidate
+    new = _spec("new", w, d, front=front, side=side, rug=rug, window=window)
+    fixed = z if axis == 0 else x
+    for k, which, restart in steps:
+        k %= len(specs)
+        if restart:  # a fresh attempt: the items so far again, in an empty copy
+            order = list(layout.placed.values())
+            layout = layout.emptied()
+            for spec, pose in order:
+                layout.add(spec, pose)
+        if specs[k].name in layout.placed:
+            layout.remove(specs[k].name)
+        else:
+            layout.add(specs[k], poses[k][which])
+        fresh, _ = _layout(room_index, [], windows)
+        for spec, pose in layout.placed.values():
+            fresh.add(_spec(spec.name, *spec.size[::2], front=spec.rule.clearance_front,
+                            side=spec.rule.clearance_side, window=spec.rule.can_close_window),
+                      pose)
+        for item_spec in (new, specs[0]):
+            assert (layout.conflicts(item_spec, Pose(x, z, rotation))
+                    == fresh.conflicts(item_spec, Pose(x, z, rotation)))
+            assert (layout.free_intervals(item_spec, rotation, axis, fixed, 0.0, 6.0)
+                    == fresh.free_intervals(item_spec, rotation, axis, fixed, 0.0, 6.0))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 5), st.integers(0, 1), st.sampled_from([0.7, 2.5]),
+                          st.sampled_from([0.0, 0.3]), st.sampled_from([4.0, 5.5])),
+                min_size=1, max_size=20),
+       st.floats(0.3, 1.6), st.floats(0.3, 1.2), st.floats(0, 0.4), st.floats(0, 0.3))
+def test_the_strips_kept_per_segment_are_those_made_afresh(segments, w, d, front, side):
+    spec = _spec("item", w, d, front=front, side=side)
+    for rotation, axis, fixed, lo, hi in segments:  # few segments: most asked again
+        strips = spec.strips(rotation, axis, fixed, lo, hi)
+        b = spec.boxes(rotation)
+        if axis == 0:
+            fresh = shapely.box(lo + b[:, 0], fixed + b[:, 1] + EPS, hi + b[:, 2],
+                                fixed + b[:, 3] - EPS)
+        else:
+            fresh = shapely.box(fixed + b[:, 0] + EPS, lo + b[:, 1], fixed + b[:, 2] - EPS,
+                                hi + b[:, 3])
+        assert shapely.equals_exact(strips.shapes, fresh, tolerance=0).all()
+        assert strips.rows == shapely.bounds(fresh).tolist()
