@@ -340,16 +340,16 @@ class Layout:
         self._obstacle_set: frozenset[Box] | None = None
         self._obstacles: ObstacleIndex | None = None
         self._indexes: dict[tuple[ObstacleBlock, ...], ObstacleIndex] = {}
-        self._window_zones: dict[str, list[tuple[str, Polygon]]] = {}
+        self._window_zones: dict[float, list[tuple[str, Polygon]]] = {}
 
     def emptied(self) -> "Layout":
         """An empty layout of the same room: the walls, door zones, windows and passage
-        rule are shared, not made again (the solver's attempts start from this)."""
+        rule are shared, not made again (the solver's attempts start from this), and so
+        are the obstacle indexes and window strips kept."""
         empty = object.__new__(Layout)
         empty.__dict__.update(self.__dict__)
         empty._ids, empty._names = dict(self._ids), list(self._names)
         empty.placed, empty._item_blocks, empty._footprints = {}, {}, {}
-        empty._window_zones = {}
         empty._changed()
         return empty
 
@@ -443,13 +443,14 @@ class Layout:
         return frozenset(b for n, b in self._footprints.items() if n != name)
 
     def _windows_for(self, spec: ItemSpec) -> list[tuple[str, Polygon]]:
+        """The strips in front of the windows that ``spec`` must not cover, by label;
+        kept by their depth for the layouts of the room (:meth:`emptied` shares them)."""
         if not spec.rule.can_close_window or not self.windows:
             return []
-        zones = self._window_zones.get(spec.name)
+        depth = spec.depth + spec.rule.clearance_front
+        zones = self._window_zones.get(depth)
         if zones is None:
-            depth = spec.depth + spec.rule.clearance_front
-            zones = [(w.label, w.zone(depth)) for w in self.windows]
-            self._window_zones[spec.name] = zones
+            zones = self._window_zones[depth] = [(w.label, w.zone(depth)) for w in self.windows]
         return zones
 
     def _blocking_hits(self, index: ObstacleIndex, spec: ItemSpec, part_rows: np.ndarray,

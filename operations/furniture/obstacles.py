@@ -57,9 +57,8 @@ class ObstacleBlock:
         """A block of obstacles of ``kinds`` (:data:`WALL` ...) owned by the ids
         ``owners`` (an item or a label); ``boxes``: the geometries are known to be the
         boxes of their bounds, else each is tested."""
-        kind = np.array(kinds, dtype=np.int64)
-        owner = np.array(owners, dtype=np.int64)
-        columns = np.stack([2 * kind, owner, np.where(kind == CLEARANCE, owner, -1)], axis=1)
+        columns = np.array([(2 * kind, owner, owner if kind == CLEARANCE else -1)
+                            for kind, owner in zip(kinds, owners)], dtype=np.int64).reshape(-1, 3)
         shaped = np.zeros(len(geometries), dtype=bool) if boxes else _shaped(geometries, bounds)
         return cls(columns, geometries, bounds, shaped)
 

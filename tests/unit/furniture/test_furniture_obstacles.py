@@ -286,3 +286,15 @@ def test_the_strips_kept_per_segment_are_those_made_afresh(segments, w, d, front
                                 hi + b[:, 3])
         assert shapely.equals_exact(strips.shapes, fresh, tolerance=0).all()
         assert strips.rows == shapely.bounds(fresh).tolist()
+
+
+def test_each_depth_keeps_its_own_window_strip():
+    """The strip an item must leave in front of a window is as deep as the item and its
+    front clearance, whichever item the layout was asked about before."""
+    deep = _spec("deep", 0.5, 1.0, window=True)
+    shallow = _spec("shallow", 0.5, 0.4, window=True)
+    for first, then, pose, blocked in [(deep, shallow, Pose(4.6, 0.8, 0), False),
+                                       (shallow, deep, Pose(4.6, 1.2, 0), True)]:
+        layout = Layout(ROOMS[0], (), [WINDOW])
+        assert layout.fits(first, Pose(4.6, 3.0, 0))
+        assert layout.emptied().fits(then, pose) is not blocked
