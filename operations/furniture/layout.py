@@ -108,6 +108,8 @@ class ItemSpec:
         """The strips the parts sweep with the centre sliding along ``axis`` from ``lo``
         to ``hi`` (:meth:`Layout.free_intervals`), made once per segment: the solver
         sweeps most segments more than once (the same wall for item after item)."""
+        if not _same_strips(lo, hi):
+            return Strips.make(self.boxes(rotation), axis, fixed, lo, hi)
         key = (rotation % 4, axis, fixed, lo, hi)
         found = self._strips.get(key)
         if found is None:
@@ -138,6 +140,13 @@ class ItemSpec:
     @cached_property
     def _strips(self) -> dict[tuple[int, int, float, float, float], Strips]:
         return {}
+
+
+def _same_strips(lo: float, hi: float) -> bool:
+    """Whether the strips swept over ``[lo, hi]`` are those of any equal ``lo`` and
+    ``hi``: unless one is zero, whose sign would carry into the strips of an item with a
+    side at its centre (of size zero)."""
+    return bool(lo and hi)
 
 
 @dataclass(frozen=True)
@@ -486,8 +495,30 @@ class Layout:
         """What blocks ``spec`` at ``pose``; ``related`` names its parent and children.
 
         With ``first=True`` the search stops at the first conflict found (walls first).
+
+        The obstacles and windows met are kept with the state's index (a third of the
+        questions a house's solver asks repeat one asked of the same state); the passage
+        rule, which keeps its own answers, is asked each time as before.
         """
         index = self._index()
+        key = ("conflicts", id(spec), pose.x, pose.z, pose.rotation, pose.yaw, related, first)
+        kept = index.answers.get(key)
+        if kept is None:  # kept with the item, whose id then stays its own
+            kept = index.answers[key] = (spec, self._blockers(index, spec, pose, related,
+                                                              first))
+        found = list(kept[1])
+        if not found and self.passage is not None and not spec.rule.non_collision:
+            blockage = self.passage.blockage(self._obstacles_without(spec.name),
+                                             _footprint(spec, pose))
+            if blockage is not None:
+                found.append(Conflict("body", "passage" if blockage.kind == "door" else
+                                      "pocket", blockage.what))
+        return found
+
+    def _blockers(self, index: ObstacleIndex, spec: ItemSpec, pose: Pose,
+                  related: frozenset[str], first: bool) -> tuple[Conflict, ...]:
+        """The obstacles and windows that block ``spec`` at ``pose`` (:meth:`conflicts`
+        without the passage rule)."""
         parts = spec.parts(pose.rotation)
         geometries = _part_shapes(spec, pose)
         found: list[Conflict] = []
@@ -498,19 +529,13 @@ class Layout:
                 found.append(Conflict(parts[part].kind, index.kind(row),
                                       self._names[index.owner(row)]))
                 if first:  # the first by obstacle, then part (walls come first)
-                    return found
+                    return tuple(found)
         for label, zone in self._windows_for(spec):
             if zone.intersects(geometries[0]):
                 found.append(Conflict("body", "window", label))
                 if first:
-                    return found
-        if not found and self.passage is not None and not spec.rule.non_collision:
-            blockage = self.passage.blockage(self._obstacles_without(spec.name),
-                                             _footprint(spec, pose))
-            if blockage is not None:
-                found.append(Conflict("body", "passage" if blockage.kind == "door" else
-                                      "pocket", blockage.what))
-        return found
+                    break
+        return tuple(found)
 
     def fits(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset()) -> bool:
         """True when nothing blocks ``spec`` at ``pose``."""
@@ -542,11 +567,30 @@ class Layout:
         -----
         Exact: every obstacle clipped to the strip a part sweeps forbids the open interval
         of centres at which the part overlaps it. Cost O(k log n) for k obstacles near the
-        strip among n.
+        strip among n. The forbidden intervals are kept with the state's index (half the
+        sweeps of a house's solver repeat one of the same state).
         """
         if hi < lo:
             return []
         index = self._index()
+        key = ("intervals", id(spec), rotation, axis, fixed, lo, hi, related)
+        kept = index.answers.get(key) if _same_strips(lo, hi) else None
+        if kept is None:  # kept with the item, whose id then stays its own
+            kept = (spec, self._forbidden(index, spec, rotation, axis, fixed, lo, hi, related))
+            if _same_strips(lo, hi):
+                index.answers[key] = kept
+        forbidden = kept[1]
+        if isinstance(forbidden, list):
+            return _complement_few(forbidden, lo, hi)
+        starts, ends = forbidden
+        return complement(starts, ends, lo, hi)
+
+    def _forbidden(self, index: ObstacleIndex, spec: ItemSpec, rotation: int, axis: int,
+                   fixed: float, lo: float, hi: float, related: frozenset[str]
+                   ) -> list[tuple[float, float]] | tuple[np.ndarray, np.ndarray]:
+        """The open intervals of centres where something blocks ``spec`` sliding along
+        ``axis`` over ``[lo, hi]`` (:meth:`free_intervals`): a list when few, else
+        ``(starts, ends)`` arrays."""
         boxes = spec.boxes(rotation)
         a0, a1 = (boxes[:, 0], boxes[:, 2]) if axis == 0 else (boxes[:, 1], boxes[:, 3])
         swept = spec.strips(rotation, axis, fixed, lo, hi)
@@ -563,7 +607,7 @@ class Layout:
             if hits is None:
                 hits = list(zip(rows.tolist(), part_rows.tolist()))
             spans = self._spans_few(index, hits, windows, strips, swept.rows, axis)
-            return _complement_few([(s0 - a1[i], s1 - a0[i]) for i, s0, s1 in spans], lo, hi)
+            return [(s0 - a1[i], s1 - a0[i]) for i, s0, s1 in spans]
         if hits is not None:
             rows = np.array([row for row, _ in hits], dtype=np.int64)
             part_rows = np.array([part for _, part in hits], dtype=np.int64)
@@ -587,7 +631,7 @@ class Layout:
             span_lo = np.concatenate([span_lo, [v for _, v, _ in shape_spans]])
             span_hi = np.concatenate([span_hi, [v for _, _, v in shape_spans]])
         span_parts = span_parts.astype(np.int64)
-        return complement(span_lo - a1[span_parts], span_hi - a0[span_parts], lo, hi)
+        return span_lo - a1[span_parts], span_hi - a0[span_parts]
 
     @staticmethod
     def _spans_few(index: ObstacleIndex, hits: list[tuple[int, int]], windows: list[Polygon],

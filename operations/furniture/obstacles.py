@@ -18,8 +18,9 @@ each tuple of blocks, as the solver comes back to the same states again and agai
 
 from __future__ import annotations
 
-from collections.abc import Collection, Sequence
+from collections.abc import Collection, Hashable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import shapely
@@ -76,6 +77,9 @@ class ObstacleIndex:
         self.any_shaped = bool(self.shaped.any())
         self.tree = STRtree(self.geometries)
         self._rows: list[list[int]] | None = None
+        self.answers: dict[tuple[Hashable, ...], Any] = {}
+        """Answers worked out from this state, by question (:class:`~.layout.Layout`
+        keeps them here)."""
 
     def kind(self, row: int) -> str:
         """The kind name of obstacle ``row`` (see :data:`KINDS`)."""

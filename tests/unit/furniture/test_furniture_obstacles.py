@@ -9,6 +9,8 @@ by the blocking table of docs/furniture.md.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import shapely
@@ -262,10 +264,16 @@ def test_a_layout_back_in_an_earlier_state_answers_as_a_fresh_one(room_index, it
                             side=spec.rule.clearance_side, window=spec.rule.can_close_window),
                       pose)
         for item_spec in (new, specs[0]):
-            assert (layout.conflicts(item_spec, Pose(x, z, rotation))
-                    == fresh.conflicts(item_spec, Pose(x, z, rotation)))
-            assert (layout.free_intervals(item_spec, rotation, axis, fixed, 0.0, 6.0)
-                    == fresh.free_intervals(item_spec, rotation, axis, fixed, 0.0, 6.0))
+            for related, first in [(frozenset(), True), (frozenset(), False),
+                                   (frozenset({"item1"}), False)]:
+                assert (layout.conflicts(item_spec, Pose(x, z, rotation), related, first=first)
+                        == fresh.conflicts(item_spec, Pose(x, z, rotation), related,
+                                           first=first))
+            for related in (frozenset(), frozenset({"item1"})):
+                assert (layout.free_intervals(item_spec, rotation, axis, fixed, 0.0, 6.0,
+                                              related)
+                        == fresh.free_intervals(item_spec, rotation, axis, fixed, 0.0, 6.0,
+                                                related))
 
 
 @settings(max_examples=60, deadline=None)
@@ -298,3 +306,35 @@ def test_each_depth_keeps_its_own_window_strip():
         layout = Layout(ROOMS[0], (), [WINDOW])
         assert layout.fits(first, Pose(4.6, 3.0, 0))
         assert layout.emptied().fits(then, pose) is not blocked
+
+
+def test_the_answers_kept_for_a_state_are_those_of_the_item_asked_about():
+    """Items made and dropped one after another (whose ids Python may give again) each
+    get their own answers from the same state, and so does an item asked about with and
+    without its family."""
+    layout = Layout(ROOMS[0])
+    table = _spec("table", 1.0, 1.0, front=0.6)
+    chair = _spec("chair", 0.4, 0.4, parent="table")
+    layout.add(table, Pose(1.0, 4.0, 0))  # its front clearance: z 3.5 .. 2.9
+    for related in (frozenset(), frozenset({"table"}), frozenset()):
+        blocked = [c.blocker for c in layout.conflicts(chair, Pose(1.0, 3.2, 0), related)]
+        assert blocked == ([] if related else ["table"])
+        free = layout.free_intervals(chair, 0, 1, 1.0, 0.3, 4.7, related)
+        assert free[0][1] == pytest.approx(3.3 if related else 2.7, abs=1e-5)
+    layout.add(_spec("post", 0.4, 0.4), Pose(3.0, 2.5, 0))
+    widths = [0.5 + 0.2 * (k % 5) for k in range(30)]  # reaching the post from 1.0 m on
+    for width in widths:
+        blocked = layout.conflicts(_spec("new", width, 0.5), Pose(2.3, 2.5, 0))
+        assert bool(blocked) == (width > 1.0), width
+    for width in widths:
+        free = layout.free_intervals(_spec("new", width, 0.5), 0, 0, 2.5, 0.1, 5.9)
+        assert free[0][1] == pytest.approx(2.8 - width / 2, abs=1e-5)
+
+
+def test_a_strip_from_zero_keeps_the_sign_of_its_start():
+    """Strips are kept by their segment's ends, which compare equal for 0.0 and -0.0: an
+    item with a side at its centre (of size zero) sweeps a strip from either."""
+    flat = _spec("flat", 0.0, 0.5)
+    for lo in (0.0, -0.0, 0.0):
+        start = flat.strips(0, 0, 2.0, lo, 5.0).rows[0][0]
+        assert math.copysign(1.0, start) == math.copysign(1.0, lo)
