@@ -76,7 +76,7 @@ class ObstacleIndex:
         self.shaped = np.concatenate([b.shaped for b in blocks])
         self.any_shaped = bool(self.shaped.any())
         self.tree = STRtree(self.geometries)
-        self._rows: list[list[int]] | None = None
+        self._lists: list[list[int]] | None = None
         self.answers: dict[tuple[Hashable, ...], Any] = {}
         """Answers worked out from this state, by question (:class:`~.layout.Layout`
         keeps them here)."""
@@ -127,18 +127,21 @@ class ObstacleIndex:
                related: Collection[int]) -> bool:
         """:meth:`blocking` for one hit, without numpy's cost per call: for the few hits
         of a query in an ordinary room."""
-        code, row_owner, clearance_owner = self.rows[row]
-        if row_owner == owner:
+        codes, owners, clearance_owners = self.lists
+        if owners[row] == owner:
             return False
         table = _RUG_BLOCKED_BY_LIST if non_collision else _BLOCKED_BY_LIST
-        return table[code + part_is_body] and (non_collision or clearance_owner not in related)
+        return table[codes[row] + part_is_body] and (non_collision
+                                                     or clearance_owners[row] not in related)
 
     @property
-    def rows(self) -> list[list[int]]:
-        """:attr:`columns` as Python lists (made on first use)."""
-        if self._rows is None:
-            self._rows = self.columns.tolist()
-        return self._rows
+    def lists(self) -> list[list[int]]:
+        """:attr:`columns` as a Python list per column (made on first use). Not a list per
+        row: a layout keeps indexes for later (:meth:`.layout.Layout._index`), and the
+        garbage collector walks every list they hold, each time it runs."""
+        if self._lists is None:
+            self._lists = self.columns.T.tolist()
+        return self._lists
 
 
 _BLOCKED_BY = np.array([
