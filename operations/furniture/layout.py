@@ -89,6 +89,12 @@ class ItemSpec:
         """The boxes of :meth:`parts` as a ``(parts, 4)`` array (made once per shape)."""
         return self._boxes[rotation % 4]
 
+    def extent(self, rotation: int) -> Box:
+        """The box around :meth:`parts`, relative to the centre: what must fit between
+        the walls (made once per shape; the placement asks for it at every wall and
+        corner)."""
+        return self._extents[rotation % 4]
+
     def parts_at(self, rotation: int, x: float, z: float) -> PartsAt:
         """The parts at ``(x, z)`` turned by ``rotation`` (no free yaw), made once per
         pose: the solver tests most poses more than once (a spot for item after item,
@@ -132,6 +138,15 @@ class ItemSpec:
         return tuple(_envelope_boxes(self.width, self.depth, rotation, r.clearance_front,
                                      r.clearance_back, r.clearance_side)
                      for rotation in range(4))
+
+    @cached_property
+    def _extents(self) -> tuple[Box, ...]:
+        extents = []
+        for rotation in range(4):
+            boxes = [part.box for part in self.parts(rotation)]
+            extents.append((min(b[0] for b in boxes), min(b[1] for b in boxes),
+                            max(b[2] for b in boxes), max(b[3] for b in boxes)))
+        return tuple(extents)
 
     @cached_property
     def _poses(self) -> dict[tuple[int, float, float], PartsAt]:

@@ -163,12 +163,7 @@ def convex_corners(edges: list[Edge]) -> list[Corner]:
 def flush_box(spec: ItemSpec, rotation: int) -> Box:
     """The box around ``spec``'s body and clearances at ``rotation`` (relative to its
     centre): what must fit between the walls."""
-    return _bbox([p.box for p in spec.parts(rotation)])
-
-
-def _bbox(boxes: list[Box]) -> Box:
-    return (min(b[0] for b in boxes), min(b[1] for b in boxes),
-            max(b[2] for b in boxes), max(b[3] for b in boxes))
+    return spec.extent(rotation)
 
 
 def flush(bbox: Box, normal: np.ndarray, line: float) -> tuple[int, float]:
@@ -368,7 +363,7 @@ class Placer:
             for corner in sorted(self.corners, key=lambda c: math.dist(c.vertex, start)):
                 for back_edge in corner.edges:
                     rotation = back_edge.facing
-                    bbox = _bbox([p.box for p in spec.parts(rotation)])
+                    bbox = spec.extent(rotation)
                     coords = [0.0, 0.0]
                     for edge in corner.edges:
                         axis, value = flush(bbox, edge.normal, edge.line)
@@ -396,7 +391,7 @@ class Placer:
             if edge.axis is None:
                 continue
             for rotation in self._wall_rotations(spec, edge):
-                bbox = _bbox([p.box for p in spec.parts(rotation)])
+                bbox = spec.extent(rotation)
                 candidates.append((edge, rotation, bbox[edge.axis + 2] - bbox[edge.axis]))
         if not candidates:
             return "the room has no straight axis-aligned wall"
@@ -416,7 +411,7 @@ class Placer:
                 assert axis is not None
                 parts = spec.parts(rotation)
                 body = parts[0].box
-                _, fixed = flush(_bbox([p.box for p in parts]), edge.normal, edge.line)
+                _, fixed = flush(spec.extent(rotation), edge.normal, edge.line)
                 lo, hi = edge.span
                 lo, hi = lo - body[axis], hi - body[axis + 2]
                 preferred = min(max(start[axis], lo), hi)
@@ -655,10 +650,8 @@ class Placer:
         lateral = _coordinate(ppose, lateral_axis)
         first: Conflict | None = None
         for ahead, edge in sorted(facing, key=lambda item: item[0]):
-            parts = spec.parts(rotation)
-            bbox = _bbox([p.box for p in parts])
-            body = parts[0].box
-            _, fixed = flush(bbox, edge.normal, edge.line)
+            body = spec.parts(rotation)[0].box
+            _, fixed = flush(spec.extent(rotation), edge.normal, edge.line)
             gap = abs(fixed - front_line) - (body[axis + 2] - body[axis]) / 2
             if gap < spec.rule.min_pair_distance - 1e-9:
                 first = None

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from shapely.geometry import Point, box
 
-from cga.operations.furniture.clearance import Keepout, OpeningStrip
+from cga.operations.furniture.clearance import Keepout, OpeningStrip, envelope
 from cga.operations.furniture.layout import ItemSpec, Layout, Pose, nearest_in
 from cga.operations.furniture.rules import FurnitureRule
 
@@ -97,3 +99,14 @@ def test_remove_and_nearest_in():
     assert nearest_in([(0, 1), (3, 4)], 2.2) == 3
     assert nearest_in([(0, 1), (3, 4)], 0.5) == 0.5
     assert nearest_in([], 1.0) is None
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.floats(0.1, 3.0), st.floats(0.1, 3.0), st.floats(0, 1), st.floats(0, 1),
+       st.floats(0, 1), st.integers(0, 7))
+def test_the_extent_is_the_box_around_the_parts(w, d, front, back, side, rotation):
+    item = spec("item", w, d, clearance_front=front, clearance_back=back,
+                clearance_side=side)
+    boxes = [p.box for p in envelope(w, d, rotation % 4, front=front, back=back, side=side)]
+    assert item.extent(rotation) == (min(b[0] for b in boxes), min(b[1] for b in boxes),
+                                     max(b[2] for b in boxes), max(b[3] for b in boxes))
