@@ -31,7 +31,7 @@ share an edge and a wall item may stand flush against its wall.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
@@ -105,9 +105,7 @@ class ItemSpec:
         if found is None:
             if len(self._poses) >= _KEPT_POSES:
                 self._poses.clear()
-            shapes = _part_boxes(self.boxes(rotation), x, z)
-            shapes.flags.writeable = False
-            found = self._poses[key] = PartsAt(shapes)
+            found = self._poses[key] = PartsAt(_part_boxes(self.boxes(rotation), x, z))
         return found
 
     def strips(self, rotation: int, axis: int, fixed: float, lo: float, hi: float) -> Strips:
@@ -164,19 +162,29 @@ def _same_strips(lo: float, hi: float) -> bool:
     return bool(lo and hi)
 
 
-@dataclass(frozen=True)
 class PartsAt:
-    """An item's parts at one pose without a free yaw (:meth:`ItemSpec.parts_at`)."""
+    """An item's parts at one pose without a free yaw (:meth:`ItemSpec.parts_at`).
 
-    shapes: np.ndarray
-    """The parts as shapely boxes shrunk by :data:`EPS` (:func:`_part_boxes`)."""
-    blocks: dict[int, ObstacleBlock] = field(default_factory=dict)
-    """The obstacles they make in a layout, by the item's id there (:meth:`Layout.add`)."""
+    A plain class with slots: one is made for each pose tested, most of them never
+    tested again in a crowded room, where a dataclass' cost per instance showed."""
 
-    @cached_property
+    __slots__ = ("shapes", "blocks", "_bounds")
+
+    def __init__(self, shapes: np.ndarray):
+        self.shapes = shapes
+        """The parts as shapely boxes shrunk by :data:`EPS` (:func:`_part_boxes`; never
+        written)."""
+        self.blocks: dict[int, ObstacleBlock] = {}
+        """The obstacles they make in a layout, by the item's id there
+        (:meth:`Layout.add`)."""
+        self._bounds: np.ndarray | None = None
+
+    @property
     def bounds(self) -> np.ndarray:
         """The bounds of :attr:`shapes`, ``(parts, 4)`` (made when the item is added)."""
-        return shapely.bounds(self.shapes)
+        if self._bounds is None:
+            self._bounds = shapely.bounds(self.shapes)
+        return self._bounds
 
 
 @dataclass(frozen=True)
@@ -184,7 +192,8 @@ class Strips:
     """The strips an item's parts sweep along one segment (:meth:`ItemSpec.strips`)."""
 
     shapes: np.ndarray
-    """Per part, the box its centre line sweeps, shrunk by :data:`EPS` across."""
+    """Per part, the box its centre line sweeps, shrunk by :data:`EPS` across (never
+    written)."""
     bounds: np.ndarray
     """Their bounds, ``(parts, 4)``."""
     rows: list[list[float]]
@@ -199,7 +208,6 @@ class Strips:
         across = (fixed + p0 + EPS, fixed + p1 - EPS)
         shapes = (shapely.box(along[0], across[0], along[1], across[1]) if axis == 0
                   else shapely.box(across[0], along[0], across[1], along[1]))
-        shapes.flags.writeable = False
         bounds = shapely.bounds(shapes)
         return cls(shapes, bounds, bounds.tolist())
 
