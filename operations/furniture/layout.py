@@ -372,6 +372,7 @@ class Layout:
         self._obstacle_set: frozenset[Box] | None = None
         self._obstacles: ObstacleIndex | None = None
         self._indexes: dict[tuple[ObstacleBlock, ...], ObstacleIndex] = {}
+        self._last: tuple[tuple[ObstacleBlock, ...], ObstacleIndex] | None = None
         self._window_zones: dict[float, list[tuple[str, Polygon]]] = {}
 
     def emptied(self) -> "Layout":
@@ -461,8 +462,11 @@ class Layout:
             if index is None:
                 if len(self._indexes) >= _KEPT_INDEXES:
                     self._indexes.clear()
-                index = self._indexes[blocks] = ObstacleIndex(blocks)
+                last = self._last  # the state before an item was added: extended
+                base = last[1] if last is not None and last[0] == blocks[:-1] else None
+                index = self._indexes[blocks] = ObstacleIndex(blocks, base)
             self._obstacles = index
+            self._last = (blocks, index)
         return self._obstacles
 
     def _obstacles_without(self, name: str) -> frozenset[Box]:

@@ -12,8 +12,9 @@ among them with bounds arithmetic.
 
 The index is immutable: a layout builds one per state from :class:`ObstacleBlock`\\ s
 (the walls and door zones, then one block per placed item) that it keeps between
-states, so a rebuild concatenates arrays and builds one tree; and it keeps the index of
-each tuple of blocks, as the solver comes back to the same states again and again.
+states, so a rebuild concatenates arrays (or extends those of the state before the
+last item was added) and builds one tree; and it keeps the index of each tuple of
+blocks, as the solver comes back to the same states again and again.
 """
 
 from __future__ import annotations
@@ -66,14 +67,21 @@ class ObstacleBlock:
 
 class ObstacleIndex:
     """An STRtree over the obstacles of ``blocks`` with their columns, in block order
-    (row order decides which conflict a query reports first)."""
+    (row order decides which conflict a query reports first).
 
-    def __init__(self, blocks: Sequence[ObstacleBlock]):
-        self.columns = np.concatenate([b.columns for b in blocks])
-        self.geometries = np.concatenate([b.geometries for b in blocks])
-        self.bounds = np.concatenate([b.bounds for b in blocks])
+    ``base``, when given, is the index of all of ``blocks`` but the last: its columns are
+    extended by the last block's rather than all blocks' concatenated again (the same
+    arrays; in a crowded room, where each item is added after a hundred others, the
+    concatenation cost more than the tree)."""
+
+    def __init__(self, blocks: Sequence[ObstacleBlock], base: ObstacleIndex | None = None):
+        parts: Sequence[ObstacleBlock | ObstacleIndex] = (
+            blocks if base is None else (base, blocks[-1]))
+        self.columns: np.ndarray = np.concatenate([b.columns for b in parts])
+        self.geometries: np.ndarray = np.concatenate([b.geometries for b in parts])
+        self.bounds: np.ndarray = np.concatenate([b.bounds for b in parts])
         self.is_rectangle = ~np.isnan(self.bounds[:, 0])
-        self.shaped = np.concatenate([b.shaped for b in blocks])
+        self.shaped: np.ndarray = np.concatenate([b.shaped for b in parts])
         self.any_shaped = bool(self.shaped.any())
         self.tree = STRtree(self.geometries)
         self._lists: list[list[int]] | None = None

@@ -22,7 +22,7 @@ from shapely.ops import unary_union
 import cga.operations.furniture.layout as layout_module
 from cga.operations.furniture.clearance import Keepout, OpeningStrip, envelope
 from cga.operations.furniture.layout import EPS, ItemSpec, Layout, Pose
-from cga.operations.furniture.obstacles import complement
+from cga.operations.furniture.obstacles import ObstacleIndex, complement
 from cga.operations.furniture.rules import FurnitureRule
 
 ROOMS = [box(0, 0, 6, 5), unary_union([box(0, 0, 6, 3), box(0, 3, 3, 6)])]
@@ -338,3 +338,34 @@ def test_a_strip_from_zero_keeps_the_sign_of_its_start():
     for lo in (0.0, -0.0, 0.0):
         start = flat.strips(0, 0, 2.0, lo, 5.0).rows[0][0]
         assert math.copysign(1.0, start) == math.copysign(1.0, lo)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 1), st.lists(item, min_size=1, max_size=12), st.booleans())
+def test_an_index_extended_by_a_block_is_the_index_of_all_blocks(room_index, items, windows):
+    layout, _ = _layout(room_index, items, windows)
+    blocks = (layout._static, *layout._item_blocks.values())
+    if len(blocks) < 2:  # only rugs: nothing to extend by
+        return
+    base = ObstacleIndex(blocks[:-1])
+    extended, fresh = ObstacleIndex(blocks, base), ObstacleIndex(blocks)
+    for name in ("columns", "bounds", "is_rectangle", "shaped"):
+        assert np.array_equal(getattr(extended, name), getattr(fresh, name), equal_nan=True)
+    assert list(extended.geometries) == list(fresh.geometries)
+    assert extended.any_shaped == fresh.any_shaped
+    probe = shapely.box(*ROOMS[room_index].bounds)
+    assert np.array_equal(extended.tree.query(probe), fresh.tree.query(probe))
+
+
+def test_an_index_is_extended_only_from_the_state_without_its_last_item():
+    a, b, c, d = (_spec(name, 0.5, 0.5) for name in "abcd")
+    layout = Layout(ROOMS[0])
+    layout.add(a, Pose(1.0, 1.0, 0))
+    layout.add(b, Pose(3.0, 1.0, 0))
+    new = _spec("new", 0.5, 0.5)
+    assert layout.fits(new, Pose(5.0, 3.0, 0))  # queried: a, b
+    layout.remove("a")
+    layout.add(c, Pose(5.0, 1.0, 0))
+    layout.add(d, Pose(5.0, 3.0, 0))  # one item more than a, b, but not a, b and one more
+    assert layout.fits(new, Pose(1.0, 1.0, 0))
+    assert [k.blocker for k in layout.conflicts(new, Pose(5.0, 1.0, 0))] == ["c"]
