@@ -97,15 +97,23 @@ def _layout(room_index: int, items: list, windows: bool
 @given(st.integers(0, 1), st.lists(item, max_size=24), item, st.booleans())
 def test_conflicts_agree_with_the_brute_force(room_index, items, candidate, windows):
     layout, placed = _layout(room_index, items, windows)
+    spec, pose, related, found = _checked_conflicts(room_index, layout, placed, candidate,
+                                                    windows)
+    first = layout.conflicts(spec, pose, related, first=True)
+    assert first == found[:1]
+
+
+def _checked_conflicts(room_index, layout, placed, candidate, windows):
+    """The conflicts of ``candidate`` in ``layout``, checked against the brute force:
+    ``(spec, pose, related, conflicts)``."""
     w, d, front, side, rug, window, x, z, rotation = candidate
     spec = _spec("new", w, d, front=front, side=side, rug=rug, window=window)
-    related = frozenset({"item1"}) if len(items) > 1 else frozenset()
+    related = frozenset({"item1"}) if len(placed) > 1 else frozenset()
     pose = Pose(x, z, rotation)
     found = layout.conflicts(spec, pose, related)
     assert bool(found) == brute_blocked(ROOMS[room_index], placed, spec, pose, related,
                                         windows)
-    first = layout.conflicts(spec, pose, related, first=True)
-    assert first == found[:1]
+    return spec, pose, related, found
 
 
 @settings(max_examples=60, deadline=None)
@@ -205,13 +213,8 @@ def test_items_taken_out_and_put_back_block_as_before(room_index, items, candida
         layout.remove(spec.name)
     for spec, pose in moved:  # back in another order: the same poses, new rows
         layout.add(spec, pose)
-    w, d, front, side, rug, window, x, z, rotation = candidate
-    spec = _spec("new", w, d, front=front, side=side, rug=rug, window=window)
-    related = frozenset({"item1"}) if len(items) > 1 else frozenset()
-    pose = Pose(x, z, rotation)
-    found = layout.conflicts(spec, pose, related)
-    assert bool(found) == brute_blocked(ROOMS[room_index], placed, spec, pose, related,
-                                        windows)
+    spec, pose, related, found = _checked_conflicts(room_index, layout, placed, candidate,
+                                                    windows)
     fresh, _ = _layout(room_index, [], windows)
     for spec_, pose_ in [p for p in placed if p not in moved] + moved:
         fresh.add(spec_, pose_)
