@@ -30,9 +30,10 @@ share an edge and a wall item may stand flush against its wall.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
+from typing import TypeVar
 
 import numpy as np
 import shapely
@@ -59,6 +60,9 @@ _KEPT_POSES = 4096
 :meth:`ItemSpec.strips`); past it they are dropped."""
 _KEPT_INDEXES = 256
 """Obstacle indexes a room's layouts keep (:meth:`Layout._index`)."""
+
+_K = TypeVar("_K", bound=Hashable)
+_V = TypeVar("_V")
 
 
 @dataclass(frozen=True)
@@ -100,27 +104,19 @@ class ItemSpec:
         pose: the solver tests most poses more than once (a spot for item after item,
         a child's spot for each candidate pose of its parent) and adds the ones it
         tested, and shapely boxes cost more than the look-up."""
-        key = (rotation % 4, x, z)
-        found = self._poses.get(key)
-        if found is None:
-            if len(self._poses) >= _KEPT_POSES:
-                self._poses.clear()
-            found = self._poses[key] = PartsAt(_part_boxes(self.boxes(rotation), x, z))
-        return found
+        return _kept(self._poses, (rotation % 4, x, z), _KEPT_POSES,
+                     lambda: PartsAt(_part_boxes(self.boxes(rotation), x, z)))
 
     def strips(self, rotation: int, axis: int, fixed: float, lo: float, hi: float) -> Strips:
         """The strips the parts sweep with the centre sliding along ``axis`` from ``lo``
         to ``hi`` (:meth:`Layout.free_intervals`), made once per segment: the solver
         sweeps most segments more than once (the same wall for item after item)."""
-        if not _same_strips(lo, hi):
+        def make() -> Strips:
             return Strips.make(self.boxes(rotation), axis, fixed, lo, hi)
-        key = (rotation % 4, axis, fixed, lo, hi)
-        found = self._strips.get(key)
-        if found is None:
-            if len(self._strips) >= _KEPT_POSES:
-                self._strips.clear()
-            found = self._strips[key] = Strips.make(self.boxes(rotation), axis, fixed, lo, hi)
-        return found
+
+        if not _same_strips(lo, hi):
+            return make()
+        return _kept(self._strips, (rotation % 4, axis, fixed, lo, hi), _KEPT_POSES, make)
 
     # the solver asks for an item's parts thousands of times: kept on the item, so a call
     # is a tuple index rather than a cache look-up keyed by six numbers
@@ -153,6 +149,17 @@ class ItemSpec:
     @cached_property
     def _strips(self) -> dict[tuple[int, int, float, float, float], Strips]:
         return {}
+
+
+def _kept(store: dict[_K, _V], key: _K, limit: int, make: Callable[[], _V]) -> _V:
+    """``store[key]``, made by ``make`` on first use; a store of ``limit`` entries is
+    emptied first (a room's solver comes back to recent keys, rarely to old ones)."""
+    found = store.get(key)
+    if found is None:
+        if len(store) >= limit:
+            store.clear()
+        found = store[key] = make()
+    return found
 
 
 def _same_strips(lo: float, hi: float) -> bool:
@@ -458,13 +465,10 @@ class Layout:
         pose tried again, a family taken out and put back)."""
         if self._obstacles is None:
             blocks = (self._static, *self._item_blocks.values())
-            index = self._indexes.get(blocks)
-            if index is None:
-                if len(self._indexes) >= _KEPT_INDEXES:
-                    self._indexes.clear()
-                last = self._last  # the state before an item was added: extended
-                base = last[1] if last is not None and last[0] == blocks[:-1] else None
-                index = self._indexes[blocks] = ObstacleIndex(blocks, base)
+            last = self._last  # the state before an item was added: extended
+            base = last[1] if last is not None and last[0] == blocks[:-1] else None
+            index = _kept(self._indexes, blocks, _KEPT_INDEXES,
+                          lambda: ObstacleIndex(blocks, base))
             self._obstacles = index
             self._last = (blocks, index)
         return self._obstacles
@@ -601,10 +605,11 @@ class Layout:
             return []
         index = self._index()
         key = ("intervals", id(spec), rotation, axis, fixed, lo, hi, related)
-        kept = index.answers.get(key) if _same_strips(lo, hi) else None
+        keep = _same_strips(lo, hi)
+        kept = index.answers.get(key) if keep else None
         if kept is None:  # kept with the item, whose id then stays its own
             kept = (spec, self._forbidden(index, spec, rotation, axis, fixed, lo, hi, related))
-            if _same_strips(lo, hi):
+            if keep:
                 index.answers[key] = kept
         forbidden = kept[1]
         if isinstance(forbidden, list):
