@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import functools
 import hashlib
 import json
 import os
@@ -83,7 +84,10 @@ def file_digest(path: str | Path) -> str | None:
     return digest
 
 
+@functools.cache
 def _shipped_folders() -> dict[str, Path]:
+    """Shipped package → its real folder; found once per process (the packages do not
+    move while it runs, and a batch labels every house's reads against them)."""
     from .resources import shipped_dir
 
     folders = {}
@@ -126,7 +130,8 @@ def provenance(grammar: Path, options: Mapping[str, Any], reads: Sequence[Path] 
     ``reads`` (by label, sorted), the build options and the cga version."""
     from . import __version__
 
-    files = {input_label(path, grammar.parent): file_digest(path) for path in reads}
+    files = {input_label(path, grammar.parent): file_digest(path)
+             for path in dict.fromkeys(reads)}  # a file read twice is one input
     return {"grammar": file_digest(grammar), "files": dict(sorted(files.items())),
             "options": _jsonable(options), "version": __version__}
 
