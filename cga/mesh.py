@@ -19,8 +19,8 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
-__all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "face_normals",
-           "is_watertight", "transform_points", "unitize", "volume_and_centre"]
+__all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "corner_means",
+           "face_normals", "is_watertight", "transform_points", "unitize", "volume_and_centre"]
 
 _IDENTITY = np.eye(4)
 
@@ -85,8 +85,8 @@ class TriangleMesh:
 
     @property
     def triangles_center(self) -> np.ndarray:
-        """The mean of each face's corners, ``float[m, 3]``."""
-        return self.triangles.mean(axis=1)
+        """The mean of each face's corners, ``float[m, 3]`` (:func:`corner_means`)."""
+        return corner_means(self.triangles)
 
     @property
     def face_normals(self) -> np.ndarray:
@@ -163,11 +163,29 @@ def face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return unit, valid
 
 
+def corner_means(triangles: np.ndarray) -> np.ndarray:
+    """The mean of each triangle's corners (``float[m, 3, 3]`` → ``float[m, 3]``), as
+    ``triangles.mean(axis=1)`` computes it (a sum from zero, corner by corner, divided
+    by 3: the same floats, signed zeros included) without the overhead of numpy's
+    reduction machinery, which outweighs the arithmetic for the few dozen triangles of
+    a wall."""
+    return (0.0 + triangles[:, 0] + triangles[:, 1] + triangles[:, 2]) / 3.0
+
+
+_NEXT = [1, 2, 0]
+_AFTER = [2, 0, 1]
+
+
 def _crosses(triangles: np.ndarray) -> np.ndarray:
     """The cross product of each triangle's edges from its first corner (trimesh's
-    ``triangles.cross``): twice its area along its normal."""
-    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
-    return np.cross(vectors[:, 0], vectors[:, 1])
+    ``triangles.cross``): twice its area along its normal.
+
+    Written out as ``u[i+1] v[i+2] - u[i+2] v[i+1]`` per component, the products and
+    differences ``np.cross`` computes, in its order (so the same floats), without its
+    axis juggling, which costs more than the arithmetic on small arrays."""
+    u = triangles[:, 1] - triangles[:, 0]
+    v = triangles[:, 2] - triangles[:, 1]
+    return u[:, _NEXT] * v[:, _AFTER] - u[:, _AFTER] * v[:, _NEXT]
 
 
 def volume_and_centre(triangles: np.ndarray) -> tuple[float, np.ndarray]:
@@ -194,7 +212,7 @@ def area_centroid(triangles: np.ndarray) -> np.ndarray:
     """The area-weighted mean of the triangles' centres (``float[m, 3, 3]`` corners), or
     their plain mean when every triangle is degenerate: trimesh's ``Trimesh.centroid``."""
     areas = np.sqrt((_crosses(triangles)**2).sum(axis=1)) / 2.0
-    centres = triangles.mean(axis=1)
+    centres = corner_means(triangles)
     if not areas.sum() > 0:
         return np.asarray(centres.mean(axis=0))
     return np.asarray(np.average(centres, weights=areas, axis=0))
@@ -209,5 +227,7 @@ def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
     matrix = np.asarray(matrix, dtype=np.float64)
     if not len(points) or np.abs(matrix - _IDENTITY).max() < 1e-8:
         return np.ascontiguousarray(points.copy())
-    stack = np.column_stack((points, np.ones(len(points))))
+    stack = np.empty((len(points), 4))  # np.column_stack((points, ones)), made directly
+    stack[:, :3] = points
+    stack[:, 3] = 1.0
     return np.dot(matrix, stack.T).T[:, :3]

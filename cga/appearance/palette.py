@@ -80,8 +80,12 @@ class Palette:
               key: tuple[str, ...] = ()) -> list[Material]:
         """:meth:`part` of each ``(part, colour)`` of ``model`` (a model's part list, the
         same for every item of it: asked once per model and key, as the chairs of a
-        room share one answer)."""
-        full = ("parts", model, *key)
+        room share one answer).
+
+        A neutral look does not depend on the key (the first allowed row in the part's
+        own colour), so a neutral palette asks once per model: a house has a few dozen
+        models but hundreds of (model, room) pairs."""
+        full = ("parts", model, *(key if self.mode == "random" else ()))
         if full not in self._part_lists:
             self._part_lists[full] = [self.part(model, name, color, key=key)
                                       for name, color in parts]

@@ -34,16 +34,25 @@ def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -
     ValueError
         ``item.size`` has an extent that is not positive.
     """
-    target = np.asarray(item.size, dtype=float)
-    if target.shape != (3,) or not np.all(target > 0):
+    target = tuple(item.size)
+    if len(target) != 3 or not all(extent > 0 for extent in target):
         raise ValueError(f"furniture item {item.name!r}: size {item.size} must be three "
                          f"positive extents (width, height, depth) in metres")
-    own = np.asarray(model.size, dtype=float)
-    scale = np.where(np.abs(target - own) <= _SIZE_TOLERANCE, 1.0, target / own)
+    scale = [1.0 if abs(t - own) <= _SIZE_TOLERANCE else t / own
+             for t, own in zip(target, model.size)]
     matrix = np.eye(4)
-    matrix[:3, :3] = rotation_matrix(item.rotation, item.yaw) @ np.diag(scale)
+    matrix[:3, :3] = _scaled(rotation_matrix(item.rotation, item.yaw), scale)
     matrix[:3, 3] = (item.position[0], floor_y + item.elevation, item.position[1])
     return matrix
+
+
+def _scaled(rotation: np.ndarray, scale: list[float]) -> np.ndarray:
+    """``rotation @ np.diag(scale)`` (each column scaled) with the same floats, without
+    the overhead of a matrix product on 3×3 arrays: each entry of that product is
+    ``rotation[i, j] * scale[j]`` plus products with zero, at least one of them +0 (a
+    turn about +y has a middle row and column of 0, 1, 0), so it is that term, and +0
+    where the term is zero (``+ 0.0`` makes the -0 of a negative entry times zero +0)."""
+    return rotation * scale + 0.0
 
 
 def _posed(model: FurnitureModel, matrix: np.ndarray
