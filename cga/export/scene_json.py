@@ -165,58 +165,99 @@ def json_text(document: Any) -> str:
 def _write(value: Any, newline: str, parts: list[str]) -> None:
     """Append the JSON text of ``value`` to ``parts``; ``newline`` is a line break and
     the indent of the line ``value`` starts on."""
-    kind = type(value)  # exact types first: nearly every value is one
-    if kind is dict:
-        _write_dict(value, newline, parts)
-    elif kind is list or kind is tuple:
-        _write_list(value, newline, parts)
-    elif kind is str:
-        parts.append(_string(value))
-    elif isinstance(value, dict):
-        _write_dict(value, newline, parts)
-    elif isinstance(value, (list, tuple)):
-        _write_list(value, newline, parts)
-    elif isinstance(value, str):
-        parts.append(_string(value))
+    text = _one_line(value)
+    if text is not None:
+        parts.append(text)
     else:
-        parts.append(_scalar(value))
+        _write_block(value, newline, parts)
+
+
+def _write_block(value: dict[Any, Any] | Sequence[Any], newline: str, parts: list[str]) -> None:
+    """Append a dict or list that :func:`_one_line` spreads over lines."""
+    if isinstance(value, dict):
+        _write_dict(value, newline, parts)
+    else:
+        _write_list(value, newline, parts)
 
 
 def _write_dict(value: dict[Any, Any], newline: str, parts: list[str]) -> None:
-    if not value:
-        parts.append("{}")
-        return
     inner = newline + "  "
     lead = "{" + inner
     for key in sorted(value):
         if not isinstance(key, str):
             raise TypeError(f"keys must be str, not {type(key).__name__}")
-        parts.append(lead + _string(key) + ": ")
-        _write(value[key], inner, parts)
+        item = value[key]
+        head = lead + _string(key) + ": "
+        text = _one_line(item)  # most values: one append, no call further down
+        if text is not None:
+            parts.append(head + text)
+        else:
+            parts.append(head)
+            _write_block(item, inner, parts)
         lead = "," + inner
     parts.append(newline + "}")
 
 
 def _write_list(value: Sequence[Any], newline: str, parts: list[str]) -> None:
-    if not value:
-        parts.append("[]")
-    elif all(_is_number(v) for v in value):  # points, matrix rows: one line
-        parts.append("[" + ", ".join(map(_scalar, value)) + "]")
-    else:
-        inner = newline + "  "
-        lead = "[" + inner
-        for item in value:
+    inner = newline + "  "
+    lead = "[" + inner
+    for item in value:
+        text = _one_line(item)
+        if text is not None:
+            parts.append(lead + text)
+        else:
             parts.append(lead)
-            _write(item, inner, parts)
-            lead = "," + inner
-        parts.append(newline + "]")
+            _write_block(item, inner, parts)
+        lead = "," + inner
+    parts.append(newline + "]")
+
+
+def _one_line(value: Any) -> str | None:
+    """The text of ``value`` when it is written on one line (a scalar, an empty dict or
+    list, a list of only numbers), None for a dict or list spread over lines."""
+    kind = type(value)  # exact types first, the commonest first: nearly every value is one
+    if kind is str:
+        return _string(value)
+    if kind is int:
+        return int.__repr__(value)
+    if kind is dict:
+        return None if value else "{}"
+    if kind is float:
+        return _scalar(value)
+    if kind is bool or value is None:
+        return _LITERALS[value]
+    if kind is list or kind is tuple:
+        return _numbers(value) if value else "[]"
+    if isinstance(value, str):
+        return _string(value)
+    if isinstance(value, dict):
+        return None if value else "{}"
+    if isinstance(value, (list, tuple)):
+        return _numbers(value) if value else "[]"
+    return _scalar(value)
+
+
+_LITERALS = {True: "true", False: "false", None: "null"}
+
+_PLAIN_NUMBERS = frozenset({float, int})
+"""The exact types whose :func:`repr` is their JSON text (NaN and infinities aside)."""
+
+
+def _numbers(values: Sequence[Any]) -> str | None:
+    """A non-empty list of only numbers (points, matrix rows) on one line, None for any
+    other list."""
+    if _PLAIN_NUMBERS.issuperset(map(type, values)):
+        text = ", ".join(map(repr, values))
+        if "n" not in text:  # "nan", "inf": no finite number's repr has an n
+            return "[" + text + "]"
+    elif not all(_is_number(v) for v in values):
+        return None
+    return "[" + ", ".join(map(_scalar, values)) + "]"
 
 
 def _is_number(value: Any) -> bool:
     """Whether JSON writes ``value`` as a number (bools are ``true`` and ``false``)."""
-    kind = type(value)
-    return kind is float or kind is int or (
-        isinstance(value, (int, float)) and not isinstance(value, bool))
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 _string = encode_basestring
@@ -567,7 +608,7 @@ def _cleaned_dict(values: Mapping[Any, Any]) -> dict[str, Any]:
     out = {}
     for key, item in values.items():
         try:
-            out[str(key)] = _cleaned(item)
+            out[key if type(key) is str else str(key)] = _cleaned(item)
         except _Unfit as unfit:
             unfit.path.append(f".{key}")
             raise

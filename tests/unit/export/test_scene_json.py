@@ -175,6 +175,8 @@ def test_json_text_of_a_scene_is_the_standard_librarys_text(small_scene):
 def test_json_text_refuses_what_json_cannot_hold(bad, error):
     with pytest.raises(error):
         json_text({"a": [bad]})
+    with pytest.raises(error):  # after numbers: a list that would be written on one line
+        json_text({"a": [1.5, 2, bad]})
 
 
 def test_unfit_value_deep_in_a_list_is_named_by_its_path(small_scene):
