@@ -174,29 +174,28 @@ class _Primitive:
     material: int | None
 
 
-def _primitives(node: SceneNode, vertices: np.ndarray, normals: np.ndarray,
-                gltf: _Gltf) -> list[_Primitive]:
+def _primitives(node: SceneNode, vertices: np.ndarray, normals: np.ndarray, gltf: _Gltf,
+                pieces: Sequence[tuple[int, np.ndarray, np.ndarray]]) -> list[_Primitive]:
     """The node's mesh at its local ``vertices`` (:func:`_local_vertices`) with their
     ``normals``: one primitive per material of the node (:attr:`SceneNode.materials`)
-    that has triangles. A node without materials (not dressed) is one primitive of its
-    own vertex colours (:func:`_own_colors`), else of its kind's material. A mesh without
-    triangles has no primitives (and the node no mesh)."""
-    faces = np.asarray(node.mesh.faces, dtype=np.int64)
-    if not node.materials or node.face_materials is None:
+    that has triangles, its ``pieces`` (:func:`_material_pieces`). A node without
+    materials (not dressed) is one primitive of its own vertex colours
+    (:func:`_own_colors`), else of its kind's material. A mesh without triangles has no
+    primitives (and the node no mesh)."""
+    if not _dressed(node):
+        faces = np.asarray(node.mesh.faces, dtype=np.int64)
         if not len(faces):
             return []
         colors = _own_colors(node.mesh, len(vertices))
         look = None if colors is not None else gltf.material(kind_material(node.kind))
         return [_Primitive(vertices, faces, normals, colors, look)]
-    pieces = []
-    for k, material in enumerate(node.materials):
-        chosen = faces[node.face_materials == k]
-        if not len(chosen):
-            continue
-        used, local = _compact(chosen, len(vertices))
-        pieces.append(_Primitive(vertices[used], local, normals[used], None,
-                                 gltf.material(material)))
-    return pieces
+    return [_Primitive(vertices[used], local, normals[used], None,
+                       gltf.material(node.materials[k])) for k, used, local in pieces]
+
+
+def _dressed(node: SceneNode) -> bool:
+    """Whether the node has materials, one per face (:attr:`SceneNode.face_materials`)."""
+    return bool(node.materials) and node.face_materials is not None
 
 
 def _own_colors(mesh: Any, count: int) -> np.ndarray | None:
@@ -216,13 +215,48 @@ def _own_colors(mesh: Any, count: int) -> np.ndarray | None:
     return np.asarray(colors, dtype=np.uint8)
 
 
-def _compact(faces: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
-    """The vertices (of ``count``) that ``faces`` use, ascending, and the faces renumbered
-    to them: :func:`numpy.unique` with its inverse, without its sort."""
-    used = np.zeros(count, dtype=bool)
-    used[faces] = True
-    renumbered = np.cumsum(used) - 1
-    return np.flatnonzero(used), renumbered[faces]
+def _material_pieces(meshes: Sequence[tuple[int, np.ndarray, np.ndarray, int]]
+                     ) -> list[list[tuple[int, np.ndarray, np.ndarray]]]:
+    """Each mesh ``(vertex count, faces, face materials, material count)`` split by
+    material: for each material ``k`` (ascending) with faces, ``(k, used, local)``, the
+    vertices its faces use (ascending) and those faces (in their order) renumbered to
+    them, as :func:`numpy.unique` with its inverse gives them. A face whose material is
+    not one of the mesh's is left out.
+
+    All meshes at once, without a sort of the vertices: every (mesh, material) pair, a
+    slot, gets a run of marks as long as its mesh's vertices; the faces, grouped by slot
+    (stable), mark the vertices they use, and a vertex's new number is the count of marks
+    before it in its slot. Per piece that is numpy's own work; on the hundred meshes of a
+    house, most of a few dozen triangles, one pass over all saves the per-call overhead
+    that outweighed it."""
+    sizes, counts = (np.array([m[i] for m in meshes], dtype=np.int64) for i in (0, 3))
+    face_counts = [len(faces) for _, faces, _, _ in meshes]
+    slot_start = np.cumsum([0, *counts])
+    base = np.cumsum([0, *np.repeat(sizes, counts)])  # each slot's run of marks
+    owner = np.repeat(np.arange(len(meshes)), face_counts)
+    faces = np.concatenate([np.zeros((0, 3), dtype=np.int64), *(np.reshape(
+        f, (-1, 3)) for _, f, _, _ in meshes)])
+    materials = np.concatenate([np.zeros(0, dtype=np.int64), *(m for _, _, m, _ in meshes)])
+    kept = (materials >= 0) & (materials < counts[owner])
+    slots = (materials + slot_start[:-1][owner])[kept]
+    order = np.argsort(slots, kind="stable")
+    slots, faces = slots[order], faces[kept][order]
+    spots = base[slots][:, None] + faces
+    marks = np.zeros(base[-1], dtype=bool)
+    marks[spots] = True
+    before = np.concatenate([[0], np.cumsum(marks)])  # marks before each spot
+    local = before[spots] - before[base[slots]][:, None]
+    used = np.flatnonzero(marks)
+    used -= np.repeat(base[:-1], np.diff(before[base]))
+    face_bounds = np.searchsorted(slots, np.arange(len(base)))
+    used_bounds = before[base]
+    out: list[list[tuple[int, np.ndarray, np.ndarray]]] = []
+    for start, count in zip(slot_start[:-1].tolist(), counts.tolist()):
+        out.append([(k, used[used_bounds[s]:used_bounds[s + 1]],
+                     local[face_bounds[s]:face_bounds[s + 1]])
+                    for k, s in enumerate(range(start, start + count))
+                    if face_bounds[s + 1] > face_bounds[s]])
+    return out
 
 
 def _corner_angles(corners: np.ndarray) -> np.ndarray:
@@ -282,6 +316,14 @@ def _vertex_normals(meshes: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[np.
             has_faces = np.repeat([np.size(f) > 0 for _, f in meshes], counts)
             _face_normal_where_flat(normals, flat & has_faces, faces, face_normals)
     return [normals[a:b] for a, b in zip(starts[:-1], starts[1:])]
+
+
+def _unit_once_more(normals: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """Each mesh's vertex ``normals`` made unit once more, as trimesh's exporter did: that
+    moves a fifth of the float64s by an ulp, which could (in the demos never did) move a
+    float32. All meshes at once: :func:`~cga.mesh.unitize` works row by row."""
+    ends = np.cumsum([len(n) for n in normals])
+    return np.split(unitize(np.concatenate([np.zeros((0, 3)), *normals]))[0], ends[:-1])
 
 
 def _face_normal_where_flat(normals: np.ndarray, flat: np.ndarray, faces: np.ndarray,
@@ -350,7 +392,8 @@ class _Gltf:
             self._parents[name] = parent
         if mesh is not None:
             node["mesh"] = mesh
-        near = matrix is None or float(np.ptp(matrix - _IDENTITY)) < 1e-8
+        offset = None if matrix is None else np.asarray(matrix, dtype=np.float64) - _IDENTITY
+        near = offset is None or float(offset.max() - offset.min()) < 1e-8  # np.ptp's
         node["matrix"] = None if near else np.asarray(matrix, dtype=np.float64).T.ravel().tolist()
         node["extensions"] = extensions
         node["extras"] = extras
@@ -535,8 +578,14 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     first: dict[tuple[bytes, tuple[Material, ...]], int] = {}
     meshed = [i for i, source in enumerate(sources)
               if source is None or first.setdefault(source, i) == i]
-    normals = dict(zip(meshed, _vertex_normals(
-        [(local[i], np.asarray(nodes[i].mesh.faces, dtype=np.int64)) for i in meshed])))
+    faces = {i: np.asarray(nodes[i].mesh.faces, dtype=np.int64) for i in meshed}
+    normals = dict(zip(meshed, _unit_once_more(
+        _vertex_normals([(local[i], faces[i]) for i in meshed]))))
+    dressed = [i for i in meshed if _dressed(nodes[i])]
+    pieces = dict(zip(dressed, _material_pieces(
+        [(len(local[i]), faces[i], np.asarray(nodes[i].face_materials, dtype=np.int64),
+          len(nodes[i].materials))
+         for i in dressed])))
     for i, node in enumerate(nodes):
         if node.path in seen or node.path == root:
             raise ExportError(f"two scene nodes are both named {node.path!r}")
@@ -553,9 +602,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
         if source is not None and source in made_from:
             mesh = made_from[source]
         else:
-            # made unit once more, as trimesh's exporter did: that moves a fifth of the
-            # float64s by an ulp, which could (in the demos never did) move a float32
-            primitives = _primitives(node, local[i], unitize(normals[i])[0], gltf)
+            primitives = _primitives(node, local[i], normals[i], gltf, pieces.get(i, []))
             mesh = gltf.mesh(node.item.model if node.item is not None else node.path,
                              primitives)
             if source is not None:

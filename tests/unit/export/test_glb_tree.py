@@ -146,20 +146,34 @@ def test_a_vertex_of_only_degenerate_triangles_points_up():
     assert np.allclose(normals[2][:3], [0, -1, 0]) and np.allclose(normals[2][3:], [0, 1, 0])
 
 
-@settings(max_examples=100, deadline=None)
-@given(st.integers(1, 40).flatmap(
-    lambda n: st.tuples(st.just(n), st.lists(st.tuples(*[st.integers(0, n - 1)] * 3),
-                                             min_size=1, max_size=30))))
-def test_compacting_a_material_s_faces_is_numpy_unique_with_its_inverse(case):
-    from cga.export.glb import _compact
+_MESH = st.integers(1, 12).flatmap(lambda n: st.tuples(
+    st.just(n), st.lists(st.tuples(st.tuples(*[st.integers(0, n - 1)] * 3), st.integers(-1, 4)),
+                         max_size=20), st.integers(0, 4)))
 
-    count, faces = case
-    faces = np.array(faces, dtype=np.int64)
-    used, local = _compact(faces, count)
-    expected_used, inverse = np.unique(faces, return_inverse=True)
-    assert np.array_equal(used, expected_used)
-    assert np.array_equal(local, inverse.reshape(-1, 3))
-    assert np.array_equal(used[local], faces)
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(_MESH, max_size=6))
+def test_splitting_meshes_by_material_is_numpy_unique_of_each_material_s_faces(meshes):
+    """All meshes split at once give, per mesh and material with faces, the vertices
+    and renumbered faces :func:`numpy.unique` gives for that material's faces alone
+    (faces of a material the mesh does not have are left out)."""
+    from cga.export.glb import _material_pieces
+
+    cases = [(n, np.array([f for f, _ in faces], dtype=np.int64).reshape(-1, 3),
+              np.array([m for _, m in faces], dtype=np.int64), count)
+             for n, faces, count in meshes]
+    for (_, faces, materials, count), pieces in zip(cases, _material_pieces(cases), strict=True):
+        expected = []
+        for k in range(count):
+            chosen = faces[materials == k]
+            if len(chosen):
+                used, inverse = np.unique(chosen, return_inverse=True)
+                expected.append((k, used, inverse.reshape(-1, 3)))
+        assert [k for k, _, _ in pieces] == [k for k, _, _ in expected]
+        for (k, used, local), (_, expected_used, expected_local) in zip(pieces, expected):
+            assert np.array_equal(used, expected_used)
+            assert np.array_equal(local, expected_local) and local.dtype == np.int64
+            assert np.array_equal(used[local], faces[materials == k])
 
 
 def test_local_vertices_are_those_of_each_pivot_s_own_inverse(glb):
