@@ -9,6 +9,8 @@ array operations.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import manifold3d
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
@@ -29,25 +31,50 @@ def prism(area: Polygon | MultiPolygon, y_low: float,
     first, then the top cap's, then the sides'; vertices are the rings' corners at
     ``y_low``, then the same at ``y_high``.
     """
+    rings = _rings(area)
+    sizes = tuple(len(ring) for ring in rings)
+    n = sum(sizes)
+    caps = np.asarray(manifold3d.triangulate(rings), dtype=np.int64)
+    plan = np.concatenate(rings)
+    vertices = np.empty((2, n, 3))
+    vertices[:, :, 0] = plan[:, 0]
+    vertices[:, :, 2] = plan[:, 1]
+    vertices[0, :, 1], vertices[1, :, 1] = y_low, y_high
+    return vertices.reshape(2 * n, 3), np.concatenate([caps, caps[:, ::-1] + n, _sides(sizes)])
+
+
+def _rings(area: Polygon | MultiPolygon) -> list[np.ndarray]:
+    """The corners of every ring of ``area`` (not repeating the first), exteriors
+    counter-clockwise and holes clockwise in ``(x, z)``, polygon by polygon."""
     rings = []
     for polygon in getattr(area, "geoms", [area]):
         polygon = orient(polygon, sign=1.0)
         rings += [np.asarray(r.coords)[:-1] for r in (polygon.exterior, *polygon.interiors)]
-    plan = np.concatenate(rings)
-    n = len(plan)
-    caps = np.asarray(manifold3d.triangulate(rings), dtype=np.int64)
+    return rings
+
+
+@lru_cache(maxsize=256)
+def _sides(sizes: tuple[int, ...]) -> np.ndarray:
+    """The side triangles of a prism whose bottom corners are rings of ``sizes`` corners
+    one after another and whose top corners follow them: for each ring, the triangles
+    ``(a, b', b)`` of its edges ``a → b``, then their ``(a, a', b')`` (a prime: the
+    corner above).
+
+    They depend on the ring sizes alone, and a storey's walls have a handful of shapes
+    (four corners, most of them), so they are made once per shape: written out for
+    each wall, these few small arrays cost more than the rest of the prism. Read-only,
+    as it is shared."""
+    n = sum(sizes)
     sides = []
     offset = 0
-    for ring in rings:
-        a = offset + np.arange(len(ring))
-        b = offset + (np.arange(len(ring)) + 1) % len(ring)
+    for size in sizes:
+        a = offset + np.arange(size)
+        b = offset + (np.arange(size) + 1) % size
         sides += [np.column_stack([a, b + n, b]), np.column_stack([a, a + n, b + n])]
-        offset += len(ring)
-    vertices = np.empty((2 * n, 3))
-    vertices[:n, 0] = vertices[n:, 0] = plan[:, 0]
-    vertices[:n, 2] = vertices[n:, 2] = plan[:, 1]
-    vertices[:n, 1], vertices[n:, 1] = y_low, y_high
-    return vertices, np.vstack([caps, caps[:, ::-1] + n, *sides])
+        offset += size
+    out = np.concatenate(sides)
+    out.flags.writeable = False
+    return out
 
 
 def prism_mesh(area: Polygon | MultiPolygon, y_low: float, y_high: float) -> TriangleMesh:

@@ -74,9 +74,9 @@ def wall_footprints(plan: FloorPlan) -> dict[int, Polygon | MultiPolygon]:
     continued = {w.id: [_continuation(w, p, ends) for p in (w.start, w.end)] for w in plan.walls}
     line = _line_lengths(plan.walls, continued)
     walls = sorted(plan.walls, key=lambda w: (not w.outer, -line[w.id], -w.length, w.id))
-    bands = np.array([_band(w, *(_reach(w, end, ends, t) if continued[w.id][k] is None else 0.0
-                                 for k, end in enumerate(("start", "end"))))
-                      for w in walls])
+    bands = _bands([w.band_corners(*(_reach(w, end, ends, t) if continued[w.id][k] is None
+                                     else 0.0 for k, end in enumerate(("start", "end"))))
+                    for w in walls])
     outside = ~shapely.within(bands, plan.footprint)
     bands[outside] = shapely.intersection(bands[outside], plan.footprint)
     interiors = np.array([r.interior for r in plan.rooms])
@@ -211,10 +211,11 @@ def _reach(wall: Wall, end: str, ends: dict[tuple[float, float], list[Wall]], t:
     return t if a[0] * b[1] - a[1] * b[0] < 0 else 0.0
 
 
-def _band(wall: Wall, before: float, after: float) -> Polygon:
-    """The wall's strip (:meth:`Wall.band_corners`), ``before``/``after`` longer than the
-    wall at its start/end, its corners on the micrometre grid."""
-    return Polygon(np.round(wall.band_corners(before, after), _DIGITS))
+def _bands(corners: list[np.ndarray]) -> np.ndarray:
+    """The walls' strips (each :meth:`Wall.band_corners`, reaching into the joints) as
+    polygons, their corners on the micrometre grid: one shapely call for all of them,
+    as making each polygon on its own cost more than everything else done to it."""
+    return shapely.polygons(np.round(np.reshape(corners, (-1, 4, 2)), _DIGITS))
 
 
 def _without_slivers(geometry) -> Polygon | MultiPolygon | None:
@@ -244,24 +245,24 @@ def _slab(area: Polygon | MultiPolygon, rooms: list[Polygon], y_low: float,
                 rings.append([np.asarray(r.coords)[:-1]
                               for r in (polygon.exterior, *polygon.interiors)])
     n = len(vertices) // 2
-    index = {_key3(v): k for k, v in enumerate(vertices[n:], start=n)}
-    extra: list[np.ndarray] = []
+    index = {_key(p): k for k, p in enumerate(vertices[n:, [0, 2]].tolist(), start=n)}
+    extra: list[tuple[float, float, float]] = []
     top = []
     for polygon_rings in rings:
-        flat = np.concatenate(polygon_rings)
-        ids = np.empty(len(flat), dtype=np.int64)
-        for k, (x, z) in enumerate(flat):
-            key = (round(float(x), _DIGITS), round(float(z), _DIGITS))
+        ids = []
+        for x, z in np.concatenate(polygon_rings).tolist():  # floats: no numpy per corner
+            key = _key((x, z))
             if key not in index:
                 index[key] = len(vertices) + len(extra)
-                extra.append(np.array([x, y_high, z]))
-            ids[k] = index[key]
+                extra.append((x, y_high, z))
+            ids.append(index[key])
         triangles = np.asarray(manifold3d.triangulate(polygon_rings), dtype=np.int64)
-        top.append(ids[triangles.reshape(-1, 3)[:, ::-1]])
+        top.append(np.array(ids, dtype=np.int64)[triangles.reshape(-1, 3)[:, ::-1]])
     caps = _cap_count(faces, n)
     candidate = np.vstack([faces[:caps], faces[2 * caps:], *top])
     if is_watertight(candidate):
-        return _mesh(np.vstack([vertices, *extra]) if extra else vertices, candidate)
+        return _mesh(np.concatenate([vertices, np.array(extra)]) if extra else vertices,
+                     candidate)
     return _mesh(vertices, faces)
 
 
@@ -271,26 +272,30 @@ def _cap_count(faces: np.ndarray, n: int) -> int:
     return int(np.count_nonzero((faces < n).all(axis=1)))
 
 
-def _key3(vertex: np.ndarray) -> tuple[float, float]:
-    return (round(float(vertex[0]), _DIGITS), round(float(vertex[2]), _DIGITS))
-
-
 def _mesh(vertices: np.ndarray, faces: np.ndarray) -> TriangleMesh:
     return TriangleMesh(vertices, faces)
 
 
 def _opening_box(wall: Wall, opening: Opening, y0: float) -> manifold3d.Manifold:
     """A box through the wall at the opening: along the wall, up, and across it with
-    room to spare on both sides."""
+    room to spare on both sides.
+
+    The frame is worked out on plain floats (numpy's overhead on 3-vectors outweighs
+    the arithmetic), each coordinate by the operations, in the order, of the vector
+    formula ``start + d (center - width / 2) - n 2 t + (0, bottom, 0)``, so the floats
+    are those of the vector formula."""
     t = wall.thickness
-    d = np.array([wall.direction[0], 0.0, wall.direction[1]])
-    n = np.array([-d[2], 0.0, d[0]])
+    dx, dz = wall.unit()
+    nx, nz = -dz, dx  # d = (dx, 0, dz), n = (-dz, 0, dx): the horizontal normal
     bottom = y0 + opening.sill if opening.sill > 0 else y0 - _BELOW
     height = y0 + opening.sill + opening.height - bottom
-    start = np.array([wall.start[0], 0.0, wall.start[1]])
-    origin = start + d * (opening.center - opening.width / 2) - n * 2 * t + np.array([0.0, bottom, 0.0])
+    along = opening.center - opening.width / 2
+    origin = [wall.start[0] + dx * along - nx * 2 * t + 0.0,
+              0.0 + bottom,  # the formula's zeros (+0 whatever their signs), then bottom
+              wall.start[1] + dz * along - nz * 2 * t + 0.0]
     # columns: along (d), up (y), across (n): a right-handed frame, determinant +1
-    frame = np.column_stack([d, [0.0, 1.0, 0.0], n, origin])
+    frame = np.array([[dx, 0.0, nx, origin[0]], [0.0, 1.0, 0.0, origin[1]],
+                      [dz, 0.0, nz, origin[2]]])
     return manifold3d.Manifold.cube((opening.width, height, 4 * t)).transform(frame)
 
 
