@@ -20,7 +20,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
 __all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "corner_means",
-           "face_normals", "is_watertight", "transform_points", "unitize", "volume_and_centre"]
+           "face_normals", "is_watertight", "mirrors", "transform_points", "unitize",
+           "volume_and_centre"]
 
 _IDENTITY = np.eye(4)
 
@@ -231,3 +232,13 @@ def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
     stack[:, :3] = points
     stack[:, 3] = 1.0
     return np.dot(matrix, stack.T).T[:, :3]
+
+
+def mirrors(matrix: np.ndarray) -> bool:
+    """Whether the affine ``matrix`` (4×4) turns shapes inside out: whether its linear
+    part has a negative determinant, worked out as the triple product of its rows.
+
+    For the frames the meshing layer builds (turns, moves, scales far from zero) the
+    sign is that of ``np.linalg.det``, at a fraction of its cost on a 3×3 matrix."""
+    (a, b, c), (d, e, f), (g, h, i) = matrix[:3, :3].tolist()
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g) < 0

@@ -20,6 +20,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
+from weakref import WeakKeyDictionary
 
 import numpy as np
 import shapely
@@ -57,7 +58,7 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
     by_floor = {plan.index: plan for plan in plans}
     faced = _faced_rooms(nodes, by_floor)
     walls: dict[int, list[Material]] = {}
-    parts: dict[str, _Parts] = {}
+    items: dict[tuple[str, ...], _Dressing] = {}
     out = []
     for k, node in enumerate(nodes):
         floor = _floor_of(node.path)
@@ -66,10 +67,12 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
             if plan.index not in walls:
                 walls[plan.index] = [_room_material(palette, "wall", plan, r)
                                      for r in range(len(plan.rooms))]
-            materials, index = _wall(node, plan, palette, walls[plan.index], *faced[k])
+            dressing = _compact(*_wall(node, plan, palette, walls[plan.index], *faced[k]))
+        elif node.kind == "furniture" and node.item is not None and models is not None:
+            dressing = _furniture(node, plan, palette, models, items)
         else:
-            materials, index = _dress(node, plan, palette, models, parts)
-        out.append(replace(node, **_compact(materials, index)))
+            dressing = _compact(*_dress(node, plan, palette))
+        out.append(replace(node, **dressing))
     return out
 
 
@@ -102,7 +105,11 @@ def _faced_rooms(nodes: Sequence[SceneNode], by_floor: dict[int, FloorPlan]
     return faced
 
 
-def _compact(materials: list[Material], index: np.ndarray) -> dict[str, Any]:
+_Dressing = dict[str, Any]
+"""A node's ``materials`` and ``face_materials``, as :func:`dataclasses.replace` takes them."""
+
+
+def _compact(materials: list[Material], index: np.ndarray) -> _Dressing:
     """The materials the faces use, each once, in candidate order, and the faces'
     indices into them."""
     used = set(np.flatnonzero(np.bincount(index, minlength=len(materials))).tolist())
@@ -124,13 +131,11 @@ def _floor_of(path: str) -> int | None:
     return int(head[5:]) if head.startswith("floor") and head[5:].isdigit() else None
 
 
-def _dress(node: SceneNode, plan: FloorPlan | None, palette: Palette,
-           models: "object | None", parts: "dict[str, _Parts]"
+def _dress(node: SceneNode, plan: FloorPlan | None, palette: Palette
            ) -> tuple[list[Material], np.ndarray]:
-    """Candidate materials and each face's index into them."""
+    """Candidate materials and each face's index into them, for a node that is neither
+    a wall nor a furniture item."""
     count = len(node.mesh.faces)
-    if node.kind == "furniture" and node.item is not None and models is not None:
-        return _furniture(node, plan, palette, models, parts)
     if plan is not None and node.kind in ("slab", "roof"):
         return _slab(node, plan, palette)
     surface = {"stair": "stair", "rail": "rail", "mass": "mass", "face": "face"}.get(node.kind,
@@ -190,11 +195,22 @@ def _slab(node: SceneNode, plan: FloorPlan, palette: Palette) -> tuple[list[Mate
 _Parts = tuple[list[tuple[str, tuple[float, float, float]]], np.ndarray]
 """A model's parts as (group name, own colour), and each face's part."""
 
+_MODEL_PARTS: "WeakKeyDictionary[object, _Parts]" = WeakKeyDictionary()
+""":func:`_model_parts` of each model: the library shares a model among every build of a
+process, and its parts never change."""
+
 
 def _model_parts(model: object) -> _Parts:
     """The parts of a model (:class:`~cga.operations.furniture.library.FurnitureModel`):
     name and mean vertex colour (else the model's colour) of each, and the part of each
-    face of the model's mesh."""
+    face of the model's mesh; worked out once per model (:data:`_MODEL_PARTS`)."""
+    known = _MODEL_PARTS.get(model)
+    if known is None:
+        known = _MODEL_PARTS[model] = _parts_of(model)
+    return known
+
+
+def _parts_of(model: object) -> _Parts:
     geometry = model.geometry  # type: ignore[attr-defined]
     counts = [len(f) for f in geometry.faces]
     names = geometry.names or tuple(f"part_{k}" for k in range(len(counts)))
@@ -205,18 +221,28 @@ def _model_parts(model: object) -> _Parts:
             out.append((name, (r, g, b)))
         else:
             out.append((name, model.color))  # type: ignore[attr-defined]
-    return out, np.repeat(np.arange(len(counts), dtype=np.int64), counts)
+    index = np.repeat(np.arange(len(counts), dtype=np.int64), counts)
+    index.flags.writeable = False
+    return out, index
 
 
 def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette, models: object,
-               cache: "dict[str, _Parts]") -> tuple[list[Material], np.ndarray]:
+               dressed: "dict[tuple[str, ...], _Dressing]") -> _Dressing:
+    """A furniture item's materials: its model's parts' (:meth:`Palette.parts`), by the
+    part each face belongs to.
+
+    Items of one model dressed alike (the chairs of a room; in a neutral build, every
+    item of the model) share one answer, kept in ``dressed`` by model and material
+    names; their ``face_materials`` is one read-only array."""
     item = node.item
     assert item is not None
-    if item.model not in cache:
-        cache[item.model] = _model_parts(models.get(item.model))  # type: ignore[attr-defined]
-    parts, index = cache[item.model]
+    parts, index = _model_parts(models.get(item.model))  # type: ignore[attr-defined]
     key = (f"floor{plan.index}", f"room{item.room}") if plan is not None else ()
     materials = palette.parts(item.model, parts, key=key)
     if len(index) != len(node.mesh.faces):  # a mesh not made from the model's parts
-        return materials[:1], np.zeros(len(node.mesh.faces), dtype=np.int64)
-    return materials, index
+        return _compact(materials[:1], np.zeros(len(node.mesh.faces), dtype=np.int64))
+    look = (item.model, *(m.name for m in materials))
+    if look not in dressed:
+        dressing = dressed[look] = _compact(materials, index)
+        dressing["face_materials"].flags.writeable = False
+    return dressed[look]

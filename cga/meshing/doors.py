@@ -9,13 +9,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from functools import cache
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
 from cga.doors import door_leaf, leaf_model_matrix, slab_range
-from cga.mesh import TriangleMesh, transform_points
+from cga.mesh import TriangleMesh, mirrors, transform_points
 from cga.model import FloorPlan, FurnitureItem
-from cga.operations.furniture.library import FurnitureModel
+from cga.operations.furniture.library import FurnitureModel, ModelGeometry
 from cga.scene import ItemInfo, MeshArrays, SceneNode
 
 __all__ = ["box_arrays", "leaf_node"]
@@ -37,7 +38,7 @@ def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> Sc
         raise KeyError(f"furniture item {item.name!r} hangs in door {item.door}, which "
                        f"floor {plan.index} does not have")
     geometry = model.geometry
-    slab = slab_range(geometry.vertices)
+    slab = _slab(geometry)
     leaf = door_leaf(plan, door, slab[1] - slab[0])
     frame = leaf.frame()
     mesh = leaf_mesh(geometry.joined, frame @ leaf_model_matrix(leaf, geometry.joined.bounds, slab))
@@ -55,6 +56,18 @@ def leaf_node(item: FurnitureItem, plan: FloorPlan, model: FurnitureModel) -> Sc
                       mass=float(np.prod(extents)) * model.density, convex_parts=True),
         door=leaf,
     )
+
+
+_SLABS: "WeakKeyDictionary[ModelGeometry, tuple[float, float]]" = WeakKeyDictionary()
+
+
+def _slab(geometry: ModelGeometry) -> tuple[float, float]:
+    """:func:`~cga.doors.slab_range` of a door model's parts, measured once per model
+    (every door of a house hangs the same model; the library shares it among builds)."""
+    known = _SLABS.get(geometry)
+    if known is None:
+        known = _SLABS[geometry] = slab_range(geometry.vertices)
+    return known
 
 
 def box_arrays(extents: np.ndarray, matrix: np.ndarray) -> MeshArrays:
@@ -89,6 +102,6 @@ def leaf_mesh(mesh: TriangleMesh, matrix: np.ndarray) -> TriangleMesh:
     """``mesh`` moved by ``matrix``, its triangles turned over when the matrix mirrors
     (a leaf hinged at the model's +x side), colours kept."""
     faces = mesh.faces
-    if np.linalg.det(matrix[:3, :3]) < 0:
+    if mirrors(matrix):
         faces = faces[:, ::-1]
     return TriangleMesh(transform_points(mesh.vertices, matrix), faces, mesh.vertex_colors)

@@ -7,6 +7,7 @@ item (docs/architecture.md, "Meshing").
 
 from __future__ import annotations
 
+from functools import lru_cache
 from itertools import accumulate
 
 import numpy as np
@@ -94,8 +95,7 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
     matrix = item_transform(item, model, plan.floor_y)
     mesh, parts = _posed(model, matrix)
     room = plan.room(item.room)
-    # an affine map scales every volume (and convex hull volume) by |det|
-    volume = model.volume * abs(float(np.linalg.det(matrix[:3, :3])))
+    volume = model.volume * _volume_factor(tuple(matrix[:3, :3].ravel().tolist()))
     return SceneNode(
         path=f"floor{plan.index}/{room.label}/furniture/{item.name}",
         kind="furniture",
@@ -107,3 +107,14 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
                       mass=volume * model.density, convex_parts=model.convex_parts,
                       geometry=model.geometry, pose=matrix),
     )
+
+
+@lru_cache(maxsize=1024)
+def _volume_factor(linear: tuple[float, ...]) -> float:
+    """How an affine map with the 3×3 linear part ``linear`` (row by row) scales every
+    volume (and convex hull volume): ``|det|``.
+
+    The items of a house share a few dozen turns and sizes among a hundred poses, so it
+    is computed once per linear part: the same LAPACK determinant as for each item, so
+    the same float."""
+    return abs(float(np.linalg.det(np.reshape(linear, (3, 3)))))

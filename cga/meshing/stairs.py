@@ -19,7 +19,7 @@ import numpy as np
 import shapely
 from shapely.geometry import LineString, Polygon
 
-from cga.mesh import TriangleMesh, transform_points
+from cga.mesh import TriangleMesh, mirrors, transform_points
 from cga.model import Flight, FloorPlan, Stair
 from cga.scene import SceneNode
 
@@ -68,7 +68,7 @@ def flight_mesh(flight: Flight) -> TriangleMesh:
               - across * flight.width / 2)
     matrix = np.eye(4)
     matrix[:3, 0], matrix[:3, 1], matrix[:3, 2], matrix[:3, 3] = along, across, up, origin
-    if np.linalg.det(matrix[:3, :3]) < 0:  # a mirroring frame turns the faces inside out
+    if mirrors(matrix):  # a mirroring frame turns the faces inside out
         faces = faces[:, ::-1]
     return TriangleMesh(transform_points(vertices, matrix), faces)
 

@@ -14,7 +14,7 @@ import trimesh
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from cga.mesh import _crosses, corner_means, transform_points
+from cga.mesh import _crosses, corner_means, mirrors, transform_points
 from cga.meshing.items import _scaled, item_transform
 from cga.model import FurnitureItem, rotation_matrix
 
@@ -103,3 +103,17 @@ def test_item_transform_is_the_numpy_formula_bit_for_bit(own, offsets, turns, ya
     item = FurnitureItem(name="thing", model="thing", room=1, position=(x, z), rotation=turns,
                          size=size, yaw=yaw, elevation=abs(y) / 100)
     assert same_bits(item_transform(item, Model(own), y), reference_transform(item, own, y))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.integers(min_value=0, max_value=3), yaws,
+       st.lists(st.floats(min_value=0.05, max_value=20.0), min_size=3, max_size=3),
+       st.lists(st.sampled_from([1.0, -1.0]), min_size=3, max_size=3),
+       st.lists(coordinate, min_size=3, max_size=3))
+def test_mirrors_is_the_sign_of_the_determinant(turns, yaw, scale, signs, offset):
+    """Frames as the meshing layer builds them: a turn about +y, axis scales that may be
+    negative (a door hinged on the model's other side, a stair frame), a move."""
+    matrix = np.eye(4)
+    matrix[:3, :3] = rotation_matrix(turns, yaw) @ np.diag(np.multiply(scale, signs))
+    matrix[:3, 3] = offset
+    assert mirrors(matrix) == bool(np.linalg.det(matrix[:3, :3]) < 0)
