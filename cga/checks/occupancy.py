@@ -36,7 +36,6 @@ from typing import Protocol
 
 import numpy as np
 import shapely
-from PIL import Image, ImageDraw
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
@@ -44,6 +43,7 @@ from cga.mesh import MeshLike
 from cga.model import FloorPlan
 from cga.scene import MeshArrays, NodeKind, SceneNode
 
+from ._raster import Patch, polygon_patches
 from ._solids import as_manifold
 
 __all__ = [
@@ -124,7 +124,7 @@ class OccupancyGrid:
     floor: int
     band: tuple[float, float]
     obstacles: tuple[Obstacle, ...] = ()
-    cells: dict[int, list[_Patch]] = field(default_factory=dict, compare=False, repr=False)
+    cells: dict[int, list[Patch]] = field(default_factory=dict, compare=False, repr=False)
     """The cells of each obstacle (by its index in ``obstacles``), rasterised by the
     first :meth:`occupied_by` that asks for it and kept for the next."""
 
@@ -166,14 +166,14 @@ class OccupancyGrid:
     def occupied_by(self, paths: Iterable[str]) -> np.ndarray:
         """The cells occupied by the obstacles with these node paths only."""
         wanted = set(paths)
+        chosen = [k for k, obstacle in enumerate(self.obstacles) if obstacle.path in wanted]
+        missing = [k for k in chosen if k not in self.cells]
+        drawn = polygon_patches(self.shape, [self.obstacles[k].footprint for k in missing],
+                                self.x_min, self.z_min, self.resolution)
+        self.cells.update(zip(missing, drawn))
         mask = np.zeros(self.shape, dtype=bool)
-        for index, obstacle in enumerate(self.obstacles):
-            if obstacle.path in wanted:
-                patches = self.cells.get(index)
-                if patches is None:
-                    patches = self.cells[index] = _patches(
-                        mask.shape, obstacle.footprint, self.x_min, self.z_min, self.resolution)
-                _apply(mask, patches)
+        for k in chosen:
+            _apply(mask, self.cells[k])
         return mask
 
 
@@ -379,9 +379,9 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
     Notes
     -----
     One exact clip-and-project per structure node, one vectorised slice-and-hull pass
-    over all the furniture's convex parts, and one polygon fill per shadow, kept for
-    :meth:`OccupancyGrid.occupied_by`; about 15 ms for a furnished 14 m × 10 m floor at
-    5 cm.
+    over all the furniture's convex parts, and the shadows' cells, kept for
+    :meth:`OccupancyGrid.occupied_by`, filled by Pillow's rule in one numpy pass (Pillow
+    itself draws the few with a slanted edge or a hole: :mod:`cga.checks._raster`).
     """
     if not resolution > 0:
         raise ValueError(f"occupancy_grid: resolution must be positive, got {resolution!r}")
@@ -414,13 +414,12 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
     # occupied_by rasterises in the grid's own frame, whose z origin differs from z_min
     # by round-off: an obstacle's cells drawn here are kept for it when no vertex of
     # the obstacle changes row between the two frames (Pillow then draws the same cells)
-    frame_z = -(origin[1] + rows * resolution)
-    cells = {}
-    for k, obstacle in enumerate(obstacles):
-        patches = _patches(occupied.shape, obstacle.footprint, x_min, z_min, resolution)
+    footprints = [obstacle.footprint for obstacle in obstacles]
+    drawn = polygon_patches(occupied.shape, footprints, x_min, z_min, resolution)
+    for patches in drawn:
         _apply(occupied, patches)
-        if _same_rows(obstacle.footprint, z_min, frame_z, resolution):
-            cells[k] = patches
+    kept = _same_rows(footprints, z_min, -(origin[1] + rows * resolution), resolution)
+    cells = {k: patches for k, patches in enumerate(drawn) if kept[k]}
     return OccupancyGrid(occupied=occupied, free_mask=free_mask, origin=origin,
                          resolution=resolution, floor=plan.index, band=(y0, y1),
                          obstacles=tuple(obstacles), cells=cells)
@@ -451,63 +450,23 @@ def _meets(node: SceneNode, y0: float, y1: float, extent: BaseGeometry) -> bool:
     return bool(extent.intersects(shapely.box(lo[0], lo[2], hi[0], hi[2])))
 
 
-_Patch = tuple[int, int, int, int, np.ndarray]
-"""``(r0, r1, c0, c1, cells)``: the cells ``[r0:r1, c0:c1]`` of a grid a shape covers."""
-
-
 def _paint(mask: np.ndarray, geometry: BaseGeometry, x_min: float, z_min: float,
            resolution: float) -> None:
     """Set the cells of ``mask`` that ``geometry`` (plan x, z) covers or crosses."""
-    _apply(mask, _patches(mask.shape, geometry, x_min, z_min, resolution))
+    _apply(mask, polygon_patches(mask.shape, [geometry], x_min, z_min, resolution)[0])
 
 
-def _same_rows(geometry: BaseGeometry, z_a: float, z_b: float, resolution: float) -> bool:
-    """Whether every vertex of ``geometry`` lies in the same row of cells (as
-    :func:`_patches` computes it) with the grid's top edge at ``z_a`` and at ``z_b``."""
-    z = shapely.get_coordinates(geometry)[:, 1]
-    return bool(np.array_equal(np.floor((z - z_a) / resolution),
-                               np.floor((z - z_b) / resolution)))
+def _same_rows(geometries: Sequence[BaseGeometry], z_a: float, z_b: float,
+               resolution: float) -> np.ndarray:
+    """For each geometry, whether every vertex lies in the same row of cells (as
+    :func:`~cga.checks._raster.polygon_patches` computes it) with the grid's top edge
+    at ``z_a`` and at ``z_b``."""
+    xz, owner = shapely.get_coordinates(np.array(geometries, dtype=object), return_index=True)
+    z = xz[:, 1]
+    moved = np.floor((z - z_a) / resolution) != np.floor((z - z_b) / resolution)
+    return np.bincount(owner[moved], minlength=len(geometries)) == 0
 
 
-def _apply(mask: np.ndarray, patches: Sequence[_Patch]) -> None:
+def _apply(mask: np.ndarray, patches: Sequence[Patch]) -> None:
     for r0, r1, c0, c1, cells in patches:
         mask[r0:r1, c0:c1] |= cells
-
-
-def _patches(shape: tuple[int, ...], geometry: BaseGeometry, x_min: float, z_min: float,
-             resolution: float) -> list[_Patch]:
-    """The cells of a grid of ``shape`` that ``geometry`` (plan x, z) covers or crosses,
-    one patch per polygon (its bounding box of cells), drawn with Pillow."""
-    rows, cols = shape[0], shape[1]
-    out = []
-    for polygon in _polygons(geometry):
-        bx0, bz0, bx1, bz1 = polygon.bounds
-        c0 = max(math.floor((bx0 - x_min) / resolution), 0)
-        r0 = max(math.floor((bz0 - z_min) / resolution), 0)
-        c1 = min(math.floor((bx1 - x_min) / resolution) + 1, cols)
-        r1 = min(math.floor((bz1 - z_min) / resolution) + 1, rows)
-        if c0 >= c1 or r0 >= r1:
-            continue
-        image = Image.new("1", (c1 - c0, r1 - r0), 0)
-        draw = ImageDraw.Draw(image)
-
-        def pixels(ring: Sequence[Sequence[float]]) -> list[tuple[int, int]]:
-            xy = np.asarray(ring, dtype=float)[:, :2]
-            u = np.floor((xy[:, 0] - x_min) / resolution).astype(int) - c0
-            v = np.floor((xy[:, 1] - z_min) / resolution).astype(int) - r0
-            return list(zip(u.tolist(), v.tolist()))
-
-        draw.polygon(pixels(polygon.exterior.coords), fill=1, outline=1)
-        for interior in polygon.interiors:
-            draw.polygon(pixels(interior.coords), fill=0, outline=1)
-        out.append((r0, r1, c0, c1, np.asarray(image, dtype=bool)))
-    return out
-
-
-def _polygons(geometry: BaseGeometry) -> list[Polygon]:
-    """The polygons of any (multi)polygon or collection; other geometry types are skipped."""
-    if geometry.is_empty:
-        return []
-    if isinstance(geometry, Polygon):
-        return [geometry]
-    return [g for part in getattr(geometry, "geoms", ()) for g in _polygons(part)]
