@@ -162,35 +162,108 @@ def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Mat
 
 
 @dataclass(frozen=True, eq=False, slots=True)
-class _Primitive:
-    """A primitive of a glTF mesh: local ``vertices``, ``faces`` indexing them, the unit
-    ``normals`` of the vertices, and its look: RGBA ``colors`` per vertex (a mesh's own
-    colours), else the index of its ``material`` in the document."""
+class _Array:
+    """An array as the file stores it (little-endian, in its accessor's component type)
+    with the maximum and the minimum of each component that its accessor lists."""
+
+    data: np.ndarray
+    high: list[Any]
+    low: list[Any]
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class _Piece:
+    """Triangles of one look: local ``vertices``, ``faces`` indexing them and the unit
+    ``normals`` of the vertices (as a mesh is compared: ``float64``, ``int64``), and the
+    same as the file stores them: ``indices`` (``uint32``), ``positions`` and
+    ``directions`` (``float32``)."""
 
     vertices: np.ndarray
     faces: np.ndarray
     normals: np.ndarray
+    indices: _Array
+    positions: _Array
+    directions: _Array
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class _Primitive:
+    """A primitive of a glTF mesh: its ``piece`` and its look: RGBA ``colors`` per vertex
+    (a mesh's own colours), else the index of its ``material`` in the document."""
+
+    piece: _Piece
     colors: np.ndarray | None
     material: int | None
 
 
-def _primitives(node: SceneNode, vertices: np.ndarray, normals: np.ndarray, gltf: _Gltf,
-                pieces: Sequence[tuple[int, np.ndarray, np.ndarray]]) -> list[_Primitive]:
-    """The node's mesh at its local ``vertices`` (:func:`_local_vertices`) with their
-    ``normals``: one primitive per material of the node (:attr:`SceneNode.materials`)
-    that has triangles, its ``pieces`` (:func:`_material_pieces`). A node without
-    materials (not dressed) is one primitive of its own vertex colours
-    (:func:`_own_colors`), else of its kind's material. A mesh without triangles has no
-    primitives (and the node no mesh)."""
-    if not _dressed(node):
-        faces = np.asarray(node.mesh.faces, dtype=np.int64)
-        if not len(faces):
-            return []
-        colors = _own_colors(node.mesh, len(vertices))
+def _primitives(node: SceneNode, pieces: Sequence[tuple[int | None, _Piece]],
+                gltf: _Gltf) -> list[_Primitive]:
+    """The node's mesh as primitives: its ``pieces`` (:func:`_node_pieces`) with their
+    looks, a dressed node's pieces the materials they are of (:attr:`SceneNode.materials`),
+    an undressed node's one piece its own vertex colours (:func:`_own_colors`), else its
+    kind's material."""
+    out = []
+    for k, piece in pieces:
+        if k is not None:
+            out.append(_Primitive(piece, None, gltf.material(node.materials[k])))
+            continue
+        colors = _own_colors(node.mesh, len(piece.vertices))
         look = None if colors is not None else gltf.material(kind_material(node.kind))
-        return [_Primitive(vertices, faces, normals, colors, look)]
-    return [_Primitive(vertices[used], local, normals[used], None,
-                       gltf.material(node.materials[k])) for k, used, local in pieces]
+        out.append(_Primitive(piece, colors, look))
+    return out
+
+
+def _node_pieces(nodes: Sequence[SceneNode], meshed: Sequence[int],
+                 local: Sequence[np.ndarray], faces: Mapping[int, np.ndarray],
+                 normals: Mapping[int, np.ndarray]) -> dict[int, list[tuple[int | None, _Piece]]]:
+    """The pieces of each meshed node (``nodes[i]`` for ``i`` in ``meshed``) at its
+    ``local`` vertices, with their ``faces`` and vertex ``normals``: a dressed node's
+    faces split by material (:func:`_material_pieces`), each piece with the index of its
+    material; an undressed node's faces as they are, one piece with None (none without
+    faces). A mesh without a piece has no primitives (and its node no mesh)."""
+    dressed = [i for i in meshed if _dressed(nodes[i])]
+    split = dict(zip(dressed, _material_pieces(
+        [(len(local[i]), faces[i], np.asarray(nodes[i].face_materials, dtype=np.int64),
+          len(nodes[i].materials)) for i in dressed])))
+    looks: list[tuple[int, int | None]] = []
+    parts = []
+    for i in meshed:
+        if i in split:
+            for k, used, renumbered in split[i]:
+                looks.append((i, k))
+                parts.append((local[i][used], renumbered, normals[i][used]))
+        elif len(faces[i]):
+            looks.append((i, None))
+            parts.append((local[i], faces[i], normals[i]))
+    out: dict[int, list[tuple[int | None, _Piece]]] = {i: [] for i in meshed}
+    for (i, look), piece in zip(looks, _pieces(parts)):
+        out[i].append((look, piece))
+    return out
+
+
+def _pieces(parts: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]]) -> list[_Piece]:
+    """The pieces of ``(vertices, faces, normals)`` parts (each with a face), their arrays
+    cast and bounded for all parts at once: one reduction per array of a house's few
+    hundred cost more than the arithmetic."""
+    if not parts:
+        return []
+    vertex_starts = np.cumsum([0, *(len(v) for v, _, _ in parts[:-1])])
+    corner_starts = np.cumsum([0, *(np.size(f) for _, f, _ in parts[:-1])])
+    indices = _bounded(np.concatenate([np.ravel(f) for _, f, _ in parts]).astype("<u4"),
+                       corner_starts)
+    positions = _bounded(np.concatenate([v for v, _, _ in parts]).astype("<f4"), vertex_starts)
+    directions = _bounded(np.concatenate([n for _, _, n in parts]).astype("<f4"), vertex_starts)
+    return [_Piece(v, f, n, *arrays)
+            for (v, f, n), arrays in zip(parts, zip(indices, positions, directions))]
+
+
+def _bounded(data: np.ndarray, starts: np.ndarray) -> list[_Array]:
+    """``data`` (rows, or single components) cut into runs at ``starts`` (ascending, each
+    run not empty), each run with the maximum and minimum of each component."""
+    rows = data.reshape(len(data), -1)
+    highs = np.maximum.reduceat(rows, starts, axis=0).tolist()
+    lows = np.minimum.reduceat(rows, starts, axis=0).tolist()
+    return [_Array(run, high, low) for run, high, low in zip(np.split(data, starts[1:]), highs, lows)]
 
 
 def _dressed(node: SceneNode) -> bool:
@@ -347,8 +420,8 @@ def _mesh_key(primitives: Sequence[_Primitive]) -> str:
     (vertex colours, or material)."""
     digest = hashlib.sha1()
     for primitive in primitives:
-        digest.update(np.ascontiguousarray(primitive.vertices, dtype=np.float64).tobytes())
-        digest.update(np.ascontiguousarray(primitive.faces, dtype=np.int64).tobytes())
+        digest.update(np.ascontiguousarray(primitive.piece.vertices, dtype=np.float64).tobytes())
+        digest.update(np.ascontiguousarray(primitive.piece.faces, dtype=np.int64).tobytes())
         if primitive.colors is not None:
             digest.update(b"colors" + np.ascontiguousarray(primitive.colors).tobytes())
         else:
@@ -440,39 +513,35 @@ class _Gltf:
     def _primitive(self, primitive: _Primitive) -> dict[str, Any]:
         """A primitive's glTF form, its arrays stored (indices, positions, colours,
         normals: trimesh's order, as are the keys of each accessor)."""
+        piece = primitive.piece
         indices = self._accessor("indices", {"componentType": _UNSIGNED_INT, "type": "SCALAR"},
-                                 primitive.faces.astype("<u4"))
+                                 piece.indices)
         attributes = {"POSITION": self._accessor(
             "position", {"componentType": _FLOAT, "type": "VEC3", "byteOffset": 0},
-            primitive.vertices.astype("<f4"))}
+            piece.positions)}
         if primitive.colors is not None:
+            colors = primitive.colors.astype("<u1")
             attributes["COLOR_0"] = self._accessor(
                 "color", {"componentType": _UNSIGNED_BYTE, "normalized": True, "type": "VEC4",
-                          "byteOffset": 0}, primitive.colors.astype("<u1"))
+                          "byteOffset": 0}, _bounded(colors, np.zeros(1, dtype=np.int64))[0])
         attributes["NORMAL"] = self._accessor(
-            "normal", {"componentType": _FLOAT, "count": len(primitive.normals), "type": "VEC3",
-                       "byteOffset": 0}, primitive.normals.astype("<f4"))
+            "normal", {"componentType": _FLOAT, "count": len(piece.normals), "type": "VEC3",
+                       "byteOffset": 0}, piece.directions)
         out: dict[str, Any] = {"attributes": attributes, "indices": indices, "mode": _TRIANGLES}
         if primitive.material is not None:
             out["material"] = primitive.material
         return out
 
-    def _accessor(self, role: str, blob: dict[str, Any], data: np.ndarray) -> int:
-        """The index of the accessor of ``data`` in ``role`` (``blob`` its type), made
+    def _accessor(self, role: str, blob: dict[str, Any], array: _Array) -> int:
+        """The index of the accessor of ``array`` in ``role`` (``blob`` its type), made
         with its count, bounds and buffer view unless an equal one was."""
-        raw = data.tobytes()
+        raw = array.data.tobytes()
         index = self._accessor_index.get((role, raw))
         if index is None:
             blob["bufferView"] = self._view(raw)
-            if blob["type"] == "SCALAR":
-                blob["count"] = int(data.size)
-                blob["max"] = [int(data.max())]
-                blob["min"] = [int(data.min())]
-            else:
-                rows = data.reshape(-1, int(blob["type"][-1]))
-                blob["count"] = len(rows)
-                blob["max"] = rows.max(axis=0).tolist()
-                blob["min"] = rows.min(axis=0).tolist()
+            blob["count"] = len(array.data)
+            blob["max"] = array.high
+            blob["min"] = array.low
             index = self._accessor_index[(role, raw)] = len(self._accessors)
             self._accessors.append(blob)
         return index
@@ -526,7 +595,7 @@ class _Gltf:
             tree["bufferViews"] = self._views
         if lights:
             tree["extensions"] = {"KHR_lights_punctual": {"lights": lights}}
-        content = json.dumps(tree, separators=(",", ":")).encode("ascii")
+        content = json.dumps(tree, separators=(",", ":"), check_circular=False).encode("ascii")
         content += b" " * (4 - (len(content) + 20) % 4)
         binary = ([struct.pack("<2I", self._length, 0x004E4942), *self._chunks]  # "BIN"
                   if self._length else [])
@@ -581,11 +650,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     faces = {i: np.asarray(nodes[i].mesh.faces, dtype=np.int64) for i in meshed}
     normals = dict(zip(meshed, _unit_once_more(
         _vertex_normals([(local[i], faces[i]) for i in meshed]))))
-    dressed = [i for i in meshed if _dressed(nodes[i])]
-    pieces = dict(zip(dressed, _material_pieces(
-        [(len(local[i]), faces[i], np.asarray(nodes[i].face_materials, dtype=np.int64),
-          len(nodes[i].materials))
-         for i in dressed])))
+    pieces = _node_pieces(nodes, meshed, local, faces, normals)
     for i, node in enumerate(nodes):
         if node.path in seen or node.path == root:
             raise ExportError(f"two scene nodes are both named {node.path!r}")
@@ -602,7 +667,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
         if source is not None and source in made_from:
             mesh = made_from[source]
         else:
-            primitives = _primitives(node, local[i], normals[i], gltf, pieces.get(i, []))
+            primitives = _primitives(node, pieces[i], gltf)
             mesh = gltf.mesh(node.item.model if node.item is not None else node.path,
                              primitives)
             if source is not None:
