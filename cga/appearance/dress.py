@@ -25,6 +25,7 @@ from weakref import WeakKeyDictionary
 import numpy as np
 import shapely
 
+from cga.mesh import corner_means, face_normals
 from cga.model import FloorPlan
 from cga.scene import SceneNode
 
@@ -84,7 +85,9 @@ def _faced_rooms(nodes: Sequence[SceneNode], by_floor: dict[int, FloorPlan]
 
     A floor's walls are probed together: one point-in-polygon call per room and floor
     instead of one per room and wall, whose overhead outweighed the few dozen points
-    a wall has (the answers, point by point, are the same).
+    a wall has (the answers, point by point, are the same). Their triangles' centres
+    and normals are worked out together too: row by row, so the same floats as wall by
+    wall (tests/property/test_mesh_arithmetic_props.py).
     """
     per_floor: dict[int, list[int]] = {}
     for k, node in enumerate(nodes):
@@ -94,12 +97,11 @@ def _faced_rooms(nodes: Sequence[SceneNode], by_floor: dict[int, FloorPlan]
     faced = {}
     for floor, members in per_floor.items():
         plan = by_floor[floor]
-        probes = [nodes[k].mesh.triangles_center + nodes[k].mesh.face_normals * PROBE
-                  for k in members]
-        points = np.concatenate(probes)
+        triangles = np.concatenate([nodes[k].mesh.triangles for k in members])
+        points = corner_means(triangles) + face_normals(triangles)[0] * PROBE
         rooms = _rooms_at(plan, points[:, [0, 2]])
         outside = ~shapely.contains_xy(plan.footprint, points[:, 0], points[:, 2])
-        ends = np.cumsum([len(p) for p in probes])[:-1]
+        ends = np.cumsum([len(nodes[k].mesh.faces) for k in members])[:-1]
         for k, room, out in zip(members, np.split(rooms, ends), np.split(outside, ends)):
             faced[k] = (room, out)
     return faced

@@ -14,7 +14,7 @@ import trimesh
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from cga.mesh import _crosses, corner_means, mirrors, transform_points
+from cga.mesh import _crosses, corner_means, face_normals, mirrors, transform_points
 from cga.meshing.items import _scaled, item_transform
 from cga.model import FurnitureItem, rotation_matrix
 
@@ -117,3 +117,13 @@ def test_mirrors_is_the_sign_of_the_determinant(turns, yaw, scale, signs, offset
     matrix[:3, :3] = rotation_matrix(turns, yaw) @ np.diag(np.multiply(scale, signs))
     matrix[:3, 3] = offset
     assert mirrors(matrix) == bool(np.linalg.det(matrix[:3, :3]) < 0)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(triangle_arrays(), min_size=1, max_size=6))
+def test_normals_and_centres_of_meshes_together_are_theirs_one_by_one(meshes):
+    """The dressing works out a storey's walls together (BLAS sums each row alone)."""
+    together = np.concatenate(meshes)
+    assert same_bits(face_normals(together)[0],
+                     np.concatenate([face_normals(m)[0] for m in meshes]))
+    assert same_bits(corner_means(together), np.concatenate([corner_means(m) for m in meshes]))
