@@ -23,7 +23,7 @@ __all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "corner_me
            "face_normals", "is_watertight", "mirrors", "transform_points", "unitize",
            "volume_and_centre"]
 
-_IDENTITY = np.eye(4)
+_IDENTITY = np.eye(4).ravel().tolist()
 
 _ZERO = float(np.finfo(np.float64).resolution * 100)
 """A vector no longer than this has no direction (trimesh's ``util.TOL_ZERO``)."""
@@ -219,6 +219,12 @@ def area_centroid(triangles: np.ndarray) -> np.ndarray:
     return np.asarray(np.average(centres, weights=areas, axis=0))
 
 
+def _near_identity(matrix: np.ndarray) -> bool:
+    """``np.abs(matrix - identity).max() < 1e-8`` (trimesh's test; False if an entry is
+    NaN), on the 16 floats: numpy's reduction costs more than the test on a 4×4."""
+    return all(abs(a - b) < 1e-8 for a, b in zip(matrix.ravel().tolist(), _IDENTITY))
+
+
 def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
     """``points`` (``float[n, 3]``) moved by the 4×4 affine ``matrix``, computed as
     :func:`trimesh.transform_points` computes it (one product with the homogeneous
@@ -226,7 +232,7 @@ def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
     are the same bit for bit."""
     points = np.asarray(points, dtype=np.float64)
     matrix = np.asarray(matrix, dtype=np.float64)
-    if not len(points) or np.abs(matrix - _IDENTITY).max() < 1e-8:
+    if not len(points) or _near_identity(matrix):
         return np.ascontiguousarray(points.copy())
     stack = np.empty((len(points), 4))  # np.column_stack((points, ones)), made directly
     stack[:, :3] = points

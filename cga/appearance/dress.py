@@ -57,12 +57,12 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
         the items were posed from; needed when ``nodes`` has furniture.
     """
     by_floor = {plan.index: plan for plan in plans}
-    faced = _faced_rooms(nodes, by_floor)
+    floors = [_floor_of(node.path) for node in nodes]
+    faced = _faced_rooms(nodes, floors, by_floor)
     walls: dict[int, list[Material]] = {}
     items: dict[tuple[str, ...], _Dressing] = {}
     out = []
-    for k, node in enumerate(nodes):
-        floor = _floor_of(node.path)
+    for k, (node, floor) in enumerate(zip(nodes, floors)):
         plan = by_floor.get(floor) if floor is not None else None
         if k in faced and plan is not None:
             if plan.index not in walls:
@@ -77,9 +77,10 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
     return out
 
 
-def _faced_rooms(nodes: Sequence[SceneNode], by_floor: dict[int, FloorPlan]
-                 ) -> dict[int, tuple[np.ndarray, np.ndarray]]:
-    """For each wall node on a known floor (by its index in ``nodes``), the room each
+def _faced_rooms(nodes: Sequence[SceneNode], floors: list[int | None],
+                 by_floor: dict[int, FloorPlan]) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """For each wall node on a known floor (by its index in ``nodes``; ``floors``: each
+    node's floor, :func:`_floor_of`), the room each
     face faces (:func:`_rooms_at` of a probe :data:`PROBE` in front of it) and whether
     it faces the outside of the footprint.
 
@@ -90,8 +91,7 @@ def _faced_rooms(nodes: Sequence[SceneNode], by_floor: dict[int, FloorPlan]
     wall (tests/property/test_mesh_arithmetic_props.py).
     """
     per_floor: dict[int, list[int]] = {}
-    for k, node in enumerate(nodes):
-        floor = _floor_of(node.path)
+    for k, (node, floor) in enumerate(zip(nodes, floors)):
         if node.kind == "wall" and floor in by_floor:
             per_floor.setdefault(floor, []).append(k)
     faced = {}

@@ -27,9 +27,11 @@ from __future__ import annotations
 
 import colorsys
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 
@@ -55,6 +57,7 @@ _REQUIRED = ("Material", "Surface", "Color", "Roughness")
 _HEX = re.compile(r"^#?([0-9a-fA-F]{6})$")
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 _TOKENS = re.compile(r"[^A-Za-z]+")
+_T = TypeVar("_T")
 
 
 @dataclass(frozen=True)
@@ -125,6 +128,13 @@ class MaterialLibrary:
             self._answers[question] = tuple(r for r in self.rows if r.surface == surface
                                             and r.allows(model, part, room))
         return list(self._answers[question])  # type: ignore[call-overload]
+
+    def remember(self, question: tuple[object, ...], answer: Callable[[], _T]) -> _T:
+        """The answer to ``question`` (a tuple naming everything the answer depends on
+        besides the table), worked out by ``answer()`` the first time it is asked."""
+        if question not in self._answers:
+            self._answers[question] = answer()
+        return self._answers[question]  # type: ignore[return-value]
 
     def targets(self, model: str, part: str) -> bool:
         """Whether some row names this part of this model specifically."""

@@ -82,14 +82,21 @@ class Palette:
         same for every item of it: asked once per model and key, as the chairs of a
         room share one answer).
 
-        A neutral look does not depend on the key (the first allowed row in the part's
-        own colour), so a neutral palette asks once per model: a house has a few dozen
-        models but hundreds of (model, room) pairs."""
-        full = ("parts", model, *(key if self.mode == "random" else ()))
+        A neutral look depends on neither the key nor the seed (the first allowed row
+        in the part's own colour), so the neutral answer for a model and its parts is
+        worked out once per material table and shared by every build (a house has a few
+        dozen models but hundreds of (model, room) pairs)."""
+        if self.mode == "neutral":
+            return list(self.library.remember(("neutral parts", model, *parts),
+                                              lambda: self._part_list(model, parts, key)))
+        full = ("parts", model, *key)
         if full not in self._part_lists:
-            self._part_lists[full] = [self.part(model, name, color, key=key)
-                                      for name, color in parts]
+            self._part_lists[full] = self._part_list(model, parts, key)
         return list(self._part_lists[full])
+
+    def _part_list(self, model: str, parts: Sequence[tuple[str, RGB]],
+                   key: tuple[str, ...]) -> list[Material]:
+        return [self.part(model, name, color, key=key) for name, color in parts]
 
     def _part_surface(self, part: str) -> str:
         surface = part_class(part, self.library.part_classes)
