@@ -42,7 +42,7 @@ import struct
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -63,6 +63,8 @@ _IDENTITY = np.eye(4)
 
 _PLAIN = frozenset({str, int, float, bool, type(None)})
 """Types :func:`json_safe` returns as they are."""
+
+_STRINGS = frozenset({str})
 
 _GENERATOR = "cga"
 """The glTF ``asset.generator``."""
@@ -92,8 +94,11 @@ def json_safe(value: Any) -> Any:
         A value with no JSON form (the message names its type).
     """
     kind = type(value)
-    if kind in _PLAIN:  # the common case first: isinstance against ABCs is slow
+    if kind in _PLAIN:  # the common cases first: isinstance against ABCs is slow
         return value
+    if kind is dict and _STRINGS.issuperset(map(type, value)) and _PLAIN.issuperset(
+            map(type, value.values())):  # a node's extras: sorted as they are
+        return {k: value[k] for k in sorted(value)}
     if kind is dict:
         return {str(k): json_safe(value[k]) for k in sorted(value, key=str)}
     if value is None or isinstance(value, (bool, str)):
@@ -121,11 +126,15 @@ def node_pivot(node: SceneNode) -> np.ndarray:
         return node.door.frame()
     if node.kind != "furniture":
         return np.eye(4)
-    (x0, y0, z0), (x1, _, z1) = node.mesh.bounds
+    (x0, y0, z0), (x1, _, z1) = np.asarray(node.mesh.bounds).tolist()  # floats: no numpy scalars
     matrix = np.eye(4)
-    matrix[:3, :3] = rotation_matrix(node.item.rotation if node.item is not None else 0)
+    matrix[:3, :3] = _QUARTER_TURNS[(node.item.rotation if node.item is not None else 0) % 4]
     matrix[:3, 3] = ((x0 + x1) / 2, y0, (z0 + z1) / 2)
     return matrix
+
+
+_QUARTER_TURNS = [rotation_matrix(turns) for turns in range(4)]
+""":func:`~cga.model.rotation_matrix` of 0 to 3 quarter turns, made once."""
 
 
 def _local_vertices(node: SceneNode, inverse: np.ndarray | None) -> np.ndarray:
@@ -161,8 +170,7 @@ def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Mat
     return digest.digest(), node.materials
 
 
-@dataclass(frozen=True, eq=False, slots=True)
-class _Array:
+class _Array(NamedTuple):
     """An array as the file stores it (little-endian, in its accessor's component type)
     with the maximum and the minimum of each component that its accessor lists."""
 
@@ -171,8 +179,7 @@ class _Array:
     low: list[Any]
 
 
-@dataclass(frozen=True, eq=False, slots=True)
-class _Piece:
+class _Piece(NamedTuple):
     """Triangles of one look: local ``vertices``, ``faces`` indexing them and the unit
     ``normals`` of the vertices (as a mesh is compared: ``float64``, ``int64``), and the
     same as the file stores them: ``indices`` (``uint32``), ``positions`` and
@@ -263,7 +270,9 @@ def _bounded(data: np.ndarray, starts: np.ndarray) -> list[_Array]:
     rows = data.reshape(len(data), -1)
     highs = np.maximum.reduceat(rows, starts, axis=0).tolist()
     lows = np.minimum.reduceat(rows, starts, axis=0).tolist()
-    return [_Array(run, high, low) for run, high, low in zip(np.split(data, starts[1:]), highs, lows)]
+    bounds = starts.tolist() + [len(data)]
+    return [_Array(data[a:b], high, low)
+            for a, b, high, low in zip(bounds, bounds[1:], highs, lows)]
 
 
 def _dressed(node: SceneNode) -> bool:

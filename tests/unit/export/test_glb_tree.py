@@ -188,3 +188,23 @@ def test_local_vertices_are_those_of_each_pivot_s_own_inverse(glb):
         vertices = np.asarray(node.mesh.vertices, dtype=float)
         expected = np.round(vertices @ inverse[:3, :3].T + inverse[:3, 3], 6) + 0.0
         assert np.array_equal(glb_module._local_vertices(node, got), expected), node.path
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.integers(1, 6), min_size=1, max_size=8),
+       st.sampled_from([(np.float32, 3), (np.uint32, 1), (np.uint8, 4)]), st.randoms())
+def test_runs_are_bounded_as_each_alone(lengths, kind, random):
+    """The bounds of every run at once are each run's own ``max``/``min`` per component,
+    and the runs are the data cut at their starts."""
+    from cga.export.glb import _bounded
+
+    dtype, width = kind
+    data = np.array([[random.uniform(-1e3, 1e3) if dtype is np.float32 else random.randrange(256)
+                      for _ in range(width)] for _ in range(sum(lengths))], dtype=dtype)
+    data = data.ravel() if width == 1 else data
+    starts = np.cumsum([0, *lengths[:-1]])
+    for array, start, length in zip(_bounded(data, starts), starts, lengths, strict=True):
+        run = data[start:start + length]
+        assert np.array_equal(array.data, run)
+        rows = run.reshape(length, -1)
+        assert array.high == rows.max(axis=0).tolist() and array.low == rows.min(axis=0).tolist()
