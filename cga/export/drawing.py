@@ -221,7 +221,10 @@ def render_svg(drawing: Drawing) -> str:
 
 # -- PNG --------------------------------------------------------------------------------
 
+@cache
 def _rgba(color: str, opacity: float = 1.0) -> tuple[int, int, int, int]:
+    """``#rrggbb`` and an opacity as Pillow's RGBA ink; remembered, as a page asks for
+    its handful of colours some thousand times."""
     return (int(color[1:3], 16), int(color[3:5], 16), int(color[5:7], 16), round(255 * opacity))
 
 
@@ -247,6 +250,13 @@ def _dashes(points: Sequence[Point], pattern: Sequence[float]) -> list[list[Poin
     if on and len(current) > 1:
         pieces.append(current)
     return pieces
+
+
+def _ends(piece: Sequence[Point]) -> Sequence[Point]:
+    """The ends of a stroked piece that get a round cap: a closed ring's two ends are
+    one point, capped once (the page is painted, not blended, so a second disc of the
+    same ink would change no pixel)."""
+    return (piece[0],) if piece[0] == piece[-1] else (piece[0], piece[-1])
 
 
 class Canvas:
@@ -283,12 +293,12 @@ class _PngPainter:
         width = max(1, round(style.width * self.scale))
         pieces = (_dashes(points, [d * self.scale for d in style.dash]) if style.dash
                   else [list(points)])
+        ink, r = _rgba(style.stroke), width / 2
         for piece in pieces:
-            self.draw.line(piece, fill=_rgba(style.stroke), width=width, joint="curve")
+            self.draw.line(piece, fill=ink, width=width, joint="curve")
             if width > 2:  # round caps, as in the SVG
-                for x, y in (piece[0], piece[-1]):
-                    r = width / 2
-                    self.draw.ellipse((x - r, y - r, x + r, y + r), fill=_rgba(style.stroke))
+                for x, y in _ends(piece):
+                    self.draw.ellipse((x - r, y - r, x + r, y + r), fill=ink)
 
     def area(self, item: Area) -> None:
         rings = [self._pts(r) for r in item.rings]

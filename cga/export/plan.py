@@ -32,7 +32,6 @@ from typing import Literal
 
 import numpy as np
 import shapely
-from shapely import affinity
 from shapely.geometry import LineString, MultiPolygon, Point as ShapelyPoint, Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.ops import polylabel, unary_union
@@ -253,9 +252,17 @@ def _erode(region: BaseGeometry, half_w: float, half_h: float) -> BaseGeometry:
     (a room cut at 13.8 meeting a wall at 13.799999999999999) are merged first: GEOS
     divides by their zero-length edge when it mitres a corner there."""
     k = half_h / half_w
-    squashed = affinity.scale(region.simplify(1e-9), xfact=k, yfact=1.0, origin=(0, 0))
+    squashed = _scale_x(region.simplify(1e-9), k)
     eroded = squashed.buffer(-half_h, join_style="mitre")
-    return affinity.scale(eroded, xfact=1 / k, yfact=1.0, origin=(0, 0))
+    return _scale_x(eroded, 1 / k)
+
+
+def _scale_x(geometry: BaseGeometry, factor: float) -> BaseGeometry:
+    """``geometry`` with every x multiplied by ``factor``: the coordinates
+    ``affinity.scale(geometry, factor, 1.0, origin=(0, 0))`` gives, which computes
+    ``factor·x + 0·z + 0`` and ``0·x + 1·z + 0`` (the zeros added change no value but
+    turn −0.0 into 0.0, kept here by ``+ 0.0``), without setting up its matrix."""
+    return shapely.transform(geometry, lambda xz: xz * (factor, 1.0) + 0.0)
 
 
 def _open_point(region: BaseGeometry) -> tuple[float, float]:
@@ -281,14 +288,24 @@ def _open_point(region: BaseGeometry) -> tuple[float, float]:
     return (centre.x, centre.y)
 
 
+def _obstacles(plan: FloorPlan, furniture: Sequence[Polygon]) -> BaseGeometry:
+    """What room labels keep clear of, 5 cm apart: the ``furniture`` footprints, the
+    door swings and the stairs (the core's label goes on the landing). Buffered in one
+    vectorised call, each shape as its own ``buffer`` would give it (whose default is
+    16 segments a quarter circle), and merged in that order."""
+    shapes = [*furniture, *(ShapelyPoint(*door.position) for door in plan.doors),
+              *(stair.polygon for stair in plan.stairs)]
+    margins = ([0.05] * len(furniture) + [door.width + 0.05 for door in plan.doors]
+               + [0.05] * len(plan.stairs))
+    return shapely.union_all(shapely.buffer(shapes, margins, quad_segs=16))
+
+
 def _draw_room_labels(drawing: Drawing, paper: _Paper, plan: FloorPlan,
                       furniture: Sequence[Polygon]) -> None:
     """Type and area of every room, placed where the label box fits on free floor
     (clear of the ``furniture`` footprints, door swings and stairs if possible),
     shrinking the font if needed."""
-    swings = [ShapelyPoint(*door.position).buffer(door.width + 0.05) for door in plan.doors]
-    stairs = [stair.polygon.buffer(0.05) for stair in plan.stairs]  # the core's label: landing
-    obstacles = unary_union([f.buffer(0.05) for f in furniture] + swings + stairs)
+    obstacles = _obstacles(plan, furniture)
     for room in plan.rooms:
         interior = room.interior if not room.interior.is_empty else room.polygon
         name, area = _room_name(room), f"{room.area:.1f} m²"
@@ -320,28 +337,26 @@ def _along(wall: Wall, point: Sequence[float]) -> float:
 def _corners(wall: Wall, s0: float, s1: float, lo: float, hi: float) -> list[tuple[float, float]]:
     """The corners of the part of the wall between ``s0`` and ``s1`` metres along it and
     offsets ``lo`` and ``hi`` across it (along :attr:`Wall.normal`), in that order:
-    ``(s0, lo)``, ``(s1, lo)``, ``(s1, hi)``, ``(s0, hi)``."""
-    start, u, n = np.asarray(wall.start), wall.direction, wall.normal
-    return [(float(x), float(z)) for x, z in (start + u * s + n * o for s, o in
-                                              ((s0, lo), (s1, lo), (s1, hi), (s0, hi)))]
-
-
-def _rect(wall: Wall, s0: float, s1: float, lo: float, hi: float) -> Polygon:
-    """That part of the wall as a polygon (:func:`_corners`)."""
-    return Polygon(_corners(wall, s0, s1, lo, hi))
+    ``(s0, lo)``, ``(s1, lo)``, ``(s1, hi)``, ``(s0, hi)``. Plain floats: the sums
+    numpy would form element by element, in the same order, without its per-call cost."""
+    (sx, sz), (ux, uz) = wall.start, wall.unit()
+    nx, nz = -uz, ux  # Wall.normal
+    return [(sx + ux * s + nx * o, sz + uz * s + nz * o)
+            for s, o in ((s0, lo), (s1, lo), (s1, hi), (s0, hi))]
 
 
 def _draw_walls(drawing: Drawing, paper: _Paper, plan: FloorPlan) -> None:
     interiors = unary_union([r.interior for r in plan.rooms])
     solid = plan.footprint.difference(interiors)
-    cuts = []
+    cuts = []  # the openings' parts of their walls (:func:`_corners`)
     for wall in plan.walls:
         lo, hi = wall.band()
         for opening in wall.openings:
             half = opening.width / 2
-            cuts.append(_rect(wall, opening.center - half, opening.center + half,
-                              lo - 0.02, hi + 0.02))
-    solid = solid.difference(unary_union(cuts)) if cuts else solid
+            cuts.append(_corners(wall, opening.center - half, opening.center + half,
+                                 lo - 0.02, hi + 0.02))
+    if cuts:  # built and merged in one call each
+        solid = solid.difference(shapely.union_all(shapely.polygons(cuts)))
     for rings in paper.areas(solid):
         drawing.add("walls", Area(rings, _WALL, css_class="wall"))
 
