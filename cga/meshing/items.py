@@ -69,8 +69,8 @@ def _posed(model: FurnitureModel, matrix: np.ndarray
     source = model.geometry.joined
     vertices = transform_points(source.vertices, matrix)
     ends = list(accumulate(len(v) for v in model.geometry.vertices))
-    parts = tuple(MeshArrays(vertices[start:end], faces) for start, end, faces in
-                  zip([0, *ends], ends, model.geometry.faces))
+    pieces = [vertices[start:end] for start, end in zip([0, *ends], ends)]
+    parts = tuple(map(MeshArrays, pieces, model.geometry.faces))
     return TriangleMesh(vertices, source.faces, source.vertex_colors), parts
 
 

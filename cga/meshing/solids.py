@@ -166,10 +166,10 @@ def _continuation(wall: Wall, point: tuple[float, float],
                   ends: dict[tuple[float, float], list[Wall]]) -> Wall | None:
     """The wall that goes on in a straight line from ``wall`` at ``point`` with the same
     band (both inner or both outer), if any."""
-    d = wall.direction
+    d = wall.unit()
     for other in ends[_key(point)]:
         if other is not wall and other.outer == wall.outer:
-            e = other.direction
+            e = other.unit()
             if abs(d[0] * e[1] - d[1] * e[0]) < 1e-9:
                 return other
     return None
@@ -207,7 +207,7 @@ def _reach(wall: Wall, end: str, ends: dict[tuple[float, float], list[Wall]], t:
     # joint is an inner (reflex) corner, where the joint square lies past the end.
     neighbour = next(o for o in others if o.outer)
     incoming, outgoing = (wall, neighbour) if end == "end" else (neighbour, wall)
-    a, b = incoming.direction, outgoing.direction
+    a, b = incoming.unit(), outgoing.unit()
     return t if a[0] * b[1] - a[1] * b[0] < 0 else 0.0
 
 
