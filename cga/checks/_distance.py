@@ -75,24 +75,33 @@ def disc_dilation(mask: np.ndarray, reach: int) -> np.ndarray:
     each row's half width (grown one cell at a time, each width kept), then those
     stacked up and down: about ``3·√reach`` ors of the whole grid, where a distance
     transform (or a dilation by the disc's ``≈3·reach`` cells) costs more when only the
-    cells within one reach are wanted.
+    cells within one reach are wanted. The grid is laid out flat with a false margin as
+    wide as the disc right of every row, so a sideways shift is one contiguous or of the
+    flat array that never carries a cell onto the next row (an or of a column slice
+    costs about three times as much): the result is a view without the margin.
     """
     if reach < 0:
         return np.zeros_like(mask, dtype=bool)
-    top = math.isqrt(reach)
-    half = [math.isqrt(reach - dy * dy) for dy in range(top + 1)]  # half[0] is the widest
-    spans, grown = {0: mask.copy()}, mask.copy()
+    rows, cols = mask.shape
+    # half widths of the disc's rows, none wider or taller than the grid: half[0] widest
+    top = min(math.isqrt(reach), rows)
+    half = [min(math.isqrt(reach - dy * dy), cols) for dy in range(top + 1)]
+    width = cols + half[0]
+    framed = np.zeros((rows, width), dtype=bool)
+    framed[:, :cols] = mask
+    seeds = framed.ravel()
+    kept, spans, grown = set(half), {0: seeds}, seeds.copy()
     for w in range(1, half[0] + 1):
-        grown[:, w:] |= mask[:, :-w]
-        grown[:, :-w] |= mask[:, w:]
-        if w in half:
+        grown[w:] |= seeds[:-w]
+        grown[:-w] |= seeds[w:]
+        if w in kept:
             spans[w] = grown.copy()
     out = spans[half[0]].copy()
     for dy in range(1, top + 1):
-        row = spans[half[dy]]
-        out[dy:] |= row[:-dy]
-        out[:-dy] |= row[dy:]
-    return out
+        row, shift = spans[half[dy]], dy * width
+        out[shift:] |= row[:-shift]
+        out[:-shift] |= row[shift:]
+    return out.reshape(rows, width)[:, :cols]
 
 
 def diamond_dilation(mask: np.ndarray, steps: int) -> np.ndarray:

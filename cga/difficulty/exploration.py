@@ -16,6 +16,7 @@ Docs: docs/difficulty.md ("exploration path").
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Literal
 
@@ -40,12 +41,16 @@ _RAYS = 180
 
 
 def _coarsen(mask: np.ndarray, factor: int, how: Literal["any", "all"]) -> np.ndarray:
-    """Blocks of ``factor`` × ``factor`` cells: true where any (or all) of its cells are."""
+    """Blocks of ``factor`` × ``factor`` cells: true where any (or all) of its cells are.
+    The blocks' rows are combined first, then their columns: ``2·factor`` ors (or ands)
+    of strided slices, several times faster than numpy's reduction over the blocks'
+    two inner axes."""
     rows, cols = (math.ceil(n / factor) * factor for n in mask.shape)
     padded = np.zeros((rows, cols), dtype=bool)
     padded[:mask.shape[0], :mask.shape[1]] = mask
-    blocks = padded.reshape(rows // factor, factor, cols // factor, factor)
-    return np.asarray(blocks.any(axis=(1, 3)) if how == "any" else blocks.all(axis=(1, 3)))
+    combine = np.logical_or if how == "any" else np.logical_and
+    strips = functools.reduce(combine, [padded[i::factor] for i in range(factor)])
+    return functools.reduce(combine, [strips[:, j::factor] for j in range(factor)])
 
 
 _NEIGHBOURS = ((-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1))
@@ -59,24 +64,32 @@ def _grid_graph(drivable: np.ndarray, cell: float) -> tuple[csr_matrix, np.ndarr
     Every edge is stored both ways, so a search runs it with ``directed=True``: scipy's
     undirected search would transpose the matrix on every call, and the distances are
     the same (each is the least of its settled neighbours' sums, whatever the order).
-    The rows are built in order (a cell's neighbours, row-major, have rising indices),
-    so no sort is needed."""
-    index = np.full(drivable.shape, -1, dtype=np.int64)
-    flat = np.flatnonzero(drivable)
-    index.ravel()[flat] = np.arange(len(flat))
-    padded = np.pad(index, 1, constant_values=-1)
-    at = np.divmod(flat, drivable.shape[1])
-    neighbours, weights = [], []
-    for dr, dc in _NEIGHBOURS:
-        neighbours.append(padded[at[0] + 1 + dr, at[1] + 1 + dc])
-        weights.append(cell * math.hypot(dr, dc))
-    heads = np.stack(neighbours, axis=1)
+    The indices sit in a frame of -1 one cell wide, so a cell's 8 neighbours are 8 fixed
+    offsets in the flat frame, read in one gather; the rows are built in order (a
+    cell's neighbours, row-major, have rising indices), so no sort is needed."""
+    rows, cols = drivable.shape
+    framed = np.full((rows + 2, cols + 2), -1, dtype=np.int32)
+    framed[1:-1, 1:-1][drivable] = 0
+    at = np.flatnonzero(framed == 0)  # the drivable cells, row-major, in the frame
+    framed.ravel()[at] = np.arange(len(at), dtype=np.int32)
+    steps = np.array([dr * (cols + 2) + dc for dr, dc in _NEIGHBOURS])
+    heads = framed.ravel()[at[:, None] + steps]
     edges = heads >= 0
-    indptr = np.zeros(len(flat) + 1, dtype=np.int64)
-    np.cumsum(edges.sum(axis=1), out=indptr[1:])
-    data = np.broadcast_to(np.asarray(weights), heads.shape)[edges]
-    graph = csr_matrix((data, heads[edges], indptr), shape=(len(flat), len(flat)))
-    return graph, index
+    weights = np.empty(heads.shape)
+    weights[:] = [cell * math.hypot(dr, dc) for dr, dc in _NEIGHBOURS]
+    indptr = np.zeros(len(at) + 1, dtype=np.int64)
+    np.cumsum(_row_counts(edges), out=indptr[1:])
+    graph = csr_matrix((weights[edges], heads[edges], indptr), shape=(len(at), len(at)))
+    return graph, framed[1:-1, 1:-1]
+
+
+def _row_counts(flags: np.ndarray) -> np.ndarray:
+    """``uint64[n]``: the true flags in each row of ``bool[n, 8]``. A row's 8 flags are
+    the 8 bytes (0 or 1) of one 64-bit word, and multiplying it by 0x0101…01 adds them
+    all up in the top byte (a sum of at most 8 carries into no other byte): a fraction
+    of numpy's ``count_nonzero(axis=1)``."""
+    words = np.ascontiguousarray(flags).view(np.uint64).ravel()
+    return (words * np.uint64(0x0101010101010101)) >> np.uint64(56)
 
 
 def _ray_offsets(reach: int) -> np.ndarray:
@@ -86,6 +99,80 @@ def _ray_offsets(reach: int) -> np.ndarray:
     dr = np.rint(np.outer(np.sin(angles), steps)).astype(int)
     dc = np.rint(np.outer(np.cos(angles), steps)).astype(int)
     return np.stack([dr, dc], axis=-1)
+
+
+@functools.lru_cache(maxsize=8)
+def _ray_cells(reach: int) -> np.ndarray:
+    """``int[rays, steps, 2]``: :func:`_ray_offsets` with each ray's cells kept once and
+    the robot's own cell left out, each ray padded with its last cell.
+
+    The same cells are seen: a ray's rounded cells move away from the robot in each
+    coordinate, so a cell's repeats follow it (they stop the ray where it does), and the
+    own cell, which never stops a ray, is seen anyway. A ray keeps about half its steps.
+    """
+    rays = []
+    for ray in _ray_offsets(reach):
+        moved = np.ones(len(ray), dtype=bool)
+        moved[1:] = np.any(ray[1:] != ray[:-1], axis=1)
+        rays.append(ray[moved & np.any(ray != 0, axis=1)])
+    length = max(1, max(len(ray) for ray in rays))
+    out = np.zeros((len(rays), length, 2), dtype=int)
+    for i, ray in enumerate(rays):
+        if len(ray):
+            out[i, :len(ray)], out[i, len(ray):] = ray, ray[-1]
+    out.flags.writeable = False
+    return out
+
+
+class _Sensor:
+    """The 360° range sensor on the coarse grid: :meth:`sense` marks the cells seen.
+
+    The grids sit in a frame of occluding cells as wide as the sensor's reach, so a
+    ray's cells are fixed offsets in the flat frame (a ray leaving the grid stops where
+    it leaves, as on the bare grid) and one gather reads them all."""
+
+    def __init__(self, occluder: np.ndarray, reach: int) -> None:
+        rays = _ray_cells(reach)
+        self.margin = margin = int(np.abs(rays).max())
+        rows, cols = occluder.shape
+        self.width = cols + 2 * margin
+        inner = (slice(margin, margin + rows), slice(margin, margin + cols))
+        clear = np.zeros((rows + 2 * margin, self.width), dtype=bool)
+        clear[inner] = ~occluder
+        self.clear = clear.ravel()
+        self.steps = rays[..., 0] * self.width + rays[..., 1]
+        framed_seen = np.zeros_like(clear)
+        self.framed_seen = framed_seen.ravel()
+        self.seen = framed_seen[inner]
+        """``bool[rows, cols]``: the cells seen so far (a view of the frame)."""
+
+    def sense(self, at: tuple[int, int]) -> None:
+        """Marks the robot's cell and the cells each ray reaches before an occluder."""
+        here = (at[0] + self.margin) * self.width + at[1] + self.margin
+        cells = here + self.steps
+        visible = np.logical_and.accumulate(self.clear[cells], axis=1)
+        self.framed_seen[cells[visible]] = True
+        self.framed_seen[here] = True
+
+
+def _nearest(graph: csr_matrix, source: int, candidates: np.ndarray,
+             near: float) -> tuple[int, float] | None:
+    """The candidate (graph index) nearest to ``source`` along the graph, first in
+    ``candidates`` among equals, and its distance; None when none is reachable.
+
+    The search stops at ``near`` (scipy's ``limit``) first, and searches the whole
+    graph only when no candidate lies within: every cell within the limit gets the
+    very distance of a full search (the least of its neighbours' sums, and the
+    neighbours that give it lie within too), and farther cells are farther than the
+    nearest candidate. Most goals lie within one sensor range (the robot saw that far),
+    and a search within it settles a fraction of the floor's cells."""
+    for limit in (near, np.inf):
+        distances = dijkstra(graph, directed=True, indices=source, limit=limit)
+        reachable = candidates[np.isfinite(distances[candidates])]
+        if reachable.size:
+            goal = int(reachable[np.argmin(distances[reachable])])
+            return goal, float(distances[goal])
+    return None
 
 
 def exploration_path(free: np.ndarray, blocked: np.ndarray, drivable: np.ndarray,
@@ -117,35 +204,21 @@ def exploration_path(free: np.ndarray, blocked: np.ndarray, drivable: np.ndarray
 
     Notes
     -----
-    One Dijkstra search over the coarse drivable cells per goal; at most
-    :data:`MAX_GOALS` goals.
+    One Dijkstra search over the coarse drivable cells per goal (two when the goal lies
+    beyond the sensor range); at most :data:`MAX_GOALS` goals.
     """
     factor = max(1, round(CELL / resolution))
     cell = factor * resolution
     target = _coarsen(free, factor, "all")
-    occluder = _coarsen(blocked, factor, "any")
     drive = _coarsen(drivable, factor, "any")
     position = (start[0] // factor, start[1] // factor)
     drive[position] = True
     graph, index = _grid_graph(drive, cell)
     cells = np.flatnonzero(drive)  # graph index -> flat cell
-    offsets = _ray_offsets(int(sensor_range / cell))
-    rows, cols = target.shape
-    seen = np.zeros_like(target)
-
-    def sense(at: tuple[int, int]) -> None:
-        r = at[0] + offsets[..., 0]
-        c = at[1] + offsets[..., 1]
-        inside = (r >= 0) & (r < rows) & (c >= 0) & (c < cols)
-        r, c = np.where(inside, r, 0), np.where(inside, c, 0)
-        # the robot's own cell never hides anything (it may hold a wall's edge)
-        stop = (occluder[r, c] & ((r != at[0]) | (c != at[1]))) | ~inside
-        visible = np.cumsum(stop, axis=1) == 0
-        seen[r[visible], c[visible]] = True
-        seen[at] = True
-
+    sensor = _Sensor(_coarsen(blocked, factor, "any"), int(sensor_range / cell))
+    seen = sensor.seen
     wanted = share * int(target.sum())
-    sense(position)
+    sensor.sense(position)
     driven = 0.0
     for _ in range(MAX_GOALS):
         if int((seen & target).sum()) >= wanted:
@@ -155,12 +228,11 @@ def exploration_path(free: np.ndarray, blocked: np.ndarray, drivable: np.ndarray
         candidates = index[frontier]
         if candidates.size == 0:
             break
-        distances = dijkstra(graph, directed=True, indices=int(index[position]))
-        reachable = candidates[np.isfinite(distances[candidates])]
-        if reachable.size == 0:
+        nearest = _nearest(graph, int(index[position]), candidates, sensor_range)
+        if nearest is None:
             break
-        goal = int(reachable[np.argmin(distances[reachable])])
-        driven += float(distances[goal])
-        position = divmod(int(cells[goal]), cols)
-        sense(position)
+        goal, distance = nearest
+        driven += distance
+        position = divmod(int(cells[goal]), target.shape[1])
+        sensor.sense(position)
     return driven

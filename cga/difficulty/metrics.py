@@ -221,12 +221,14 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
     a cell lies in a free disc of radius ``r`` exactly when it is within ``r`` of such a
     centre: one dilation of the centres by the disc per radius (Hildebrand and
     Rüegsegger 1997 define the same thickness), each on the bounding box of the centres
-    grown by ``r`` (no cell farther out is within ``r`` of a centre). Cells in no free
-    disc (the obstacles) get 0.
+    grown by ``r`` (no cell farther out is within ``r`` of a centre). The radii rise, so a
+    cell's last one is its largest; they are counted in small integers and turned into
+    widths once. Cells in no free disc (the obstacles) get 0.
     """
-    width = np.zeros(clearance.shape)
+    radii = _radii()
+    count = np.zeros(clearance.shape, dtype=np.uint8)  # radii[count - 1] the largest
     row_best, col_best = clearance.max(axis=1), clearance.max(axis=0)
-    for radius in _radii():
+    for k, radius in enumerate(radii, start=1):
         rows, cols = np.flatnonzero(row_best >= radius), np.flatnonzero(col_best >= radius)
         if not rows.size:
             break
@@ -234,8 +236,8 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
         box = (slice(max(0, int(rows[0]) - grow), int(rows[-1]) + grow + 1),
                slice(max(0, int(cols[0]) - grow), int(cols[-1]) + grow + 1))
         near = disc_dilation(~(clearance[box] < radius), squared_reach(radius, resolution))
-        width[box][near] = 2 * radius
-    return width
+        count[box][near] = k
+    return np.array([0.0] + [2 * radius for radius in radii])[count]
 
 
 def _radii() -> list[float]:
