@@ -23,7 +23,7 @@ __all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "corner_me
            "face_normals", "is_watertight", "mirrors", "transform_points", "unitize",
            "volume_and_centre"]
 
-_IDENTITY = np.eye(4).ravel().tolist()
+_IDENTITY_ENTRIES = np.eye(4).ravel().tolist()
 
 _ZERO = float(np.finfo(np.float64).resolution * 100)
 """A vector no longer than this has no direction (trimesh's ``util.TOL_ZERO``)."""
@@ -222,7 +222,8 @@ def area_centroid(triangles: np.ndarray) -> np.ndarray:
 def _near_identity(matrix: np.ndarray) -> bool:
     """``np.abs(matrix - identity).max() < 1e-8`` (trimesh's test; False if an entry is
     NaN), on the 16 floats: numpy's reduction costs more than the test on a 4×4."""
-    return all(abs(a - b) < 1e-8 for a, b in zip(matrix.ravel().tolist(), _IDENTITY))
+    entries = matrix.ravel().tolist()
+    return all(abs(a - b) < 1e-8 for a, b in zip(entries, _IDENTITY_ENTRIES))
 
 
 def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:

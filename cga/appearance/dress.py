@@ -80,9 +80,9 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
 def _faced_rooms(nodes: Sequence[SceneNode], floors: list[int | None],
                  by_floor: dict[int, FloorPlan]) -> dict[int, tuple[np.ndarray, np.ndarray]]:
     """For each wall node on a known floor (by its index in ``nodes``; ``floors``: each
-    node's floor, :func:`_floor_of`), the room each
-    face faces (:func:`_rooms_at` of a probe :data:`PROBE` in front of it) and whether
-    it faces the outside of the footprint.
+    node's floor, :func:`_floor_of`), the room each face faces (:func:`_rooms_at` of a
+    probe :data:`PROBE` in front of it) and whether it faces the outside of the
+    footprint.
 
     A floor's walls are probed together: one point-in-polygon call per room and floor
     instead of one per room and wall, whose overhead outweighed the few dozen points
