@@ -164,7 +164,10 @@ def _path_data(rings: Sequence[Sequence[Point]], closed: bool) -> str:
     return "".join(parts)
 
 
+@cache
 def _style_attrs(style: Style) -> str:
+    """The SVG paint attributes of ``style``; remembered, as a page has a few dozen
+    styles for thousands of items."""
     attrs = [f'fill="{style.fill or "none"}"']
     if style.fill and style.opacity < 1.0:
         attrs.append(f'fill-opacity="{_num(style.opacity)}"')
@@ -176,6 +179,7 @@ def _style_attrs(style: Style) -> str:
     return " ".join(attrs)
 
 
+@cache
 def _class_attr(css_class: str) -> str:
     return f" class={quoteattr(css_class)}" if css_class else ""
 
@@ -188,7 +192,8 @@ def _svg_item(item: Item) -> str:
         return (f'<path{_class_attr(item.css_class)} d="{_path_data([item.points], item.closed)}" '
                 f'{_style_attrs(item.style)}/>')
     if isinstance(item, Arc):
-        (x0, y0), (x1, y1) = item.points()[0], item.points()[-1]
+        points = item.points()
+        (x0, y0), (x1, y1) = points[0], points[-1]
         sweep = 1 if item.end > item.start else 0
         r = _num(item.radius)
         return (f'<path{_class_attr(item.css_class)} d="M{_num(x0)} {_num(y0)}A{r} {r} 0 0 '
@@ -327,24 +332,38 @@ class _PngPainter:
         self._stroke(self._pts(item.points()), item.style)
 
     def text(self, item: Text) -> None:
-        font = _font(max(1, round(item.size * self.scale)), item.bold)
+        size_px = max(1, round(item.size * self.scale))
         anchor = {"start": "ls", "middle": "ms", "end": "rs"}[item.anchor]
         x, y = item.position[0] * self.scale, item.position[1] * self.scale
         if item.angle == 0:
-            self.draw.text((x, y), item.text, font=font, fill=_rgba(item.fill), anchor=anchor)
+            self.draw.text((x, y), item.text, font=_font(size_px, item.bold),
+                           fill=_rgba(item.fill), anchor=anchor)
             return
-        # draw horizontally on a scratch image around the anchor, turn it, paste it back
-        left, top, right, bottom = font.getbbox(item.text, anchor=anchor)
-        pad = 2
-        size = (int(right - left) + 2 * pad, int(bottom - top) + 2 * pad)  # FreeType: whole pixels
-        scratch = Image.new("RGBA", size, (0, 0, 0, 0))
-        ImageDraw.Draw(scratch).text((pad - left, pad - top), item.text, font=font,
-                                     fill=_rgba(item.fill), anchor=anchor)
-        turned = scratch.rotate(90, expand=True)
-        # the anchor sat at (pad - left, pad - top) in the scratch image; after a
-        # counter-clockwise quarter turn it sits at (pad - top, width - pad + left)
-        ax, ay = pad - top, scratch.width - (pad - left)
+        turned, (ax, ay) = _turned_text(item.text, size_px, item.bold, anchor, item.fill)
         self.image.alpha_composite(turned, (round(x - ax), round(y - ay)))
+
+
+@lru_cache(maxsize=1024)
+def _turned_text(text: str, size_px: int, bold: bool, anchor: str,
+                 fill: str) -> tuple[Image.Image, tuple[float, float]]:
+    """``text`` reading bottom to top on a transparent image, and where its anchor lies
+    on it.
+
+    The text is drawn horizontally on a scratch image at whole pixels and turned; as
+    nothing in that depends on where the label goes on the page, the image is kept and
+    a repeated label (a plan's chairs, a floor's beds) is drawn once. Callers only read
+    it.
+    """
+    font = _font(size_px, bold)
+    left, top, right, bottom = font.getbbox(text, anchor=anchor)
+    pad = 2
+    size = (int(right - left) + 2 * pad, int(bottom - top) + 2 * pad)  # FreeType: whole pixels
+    scratch = Image.new("RGBA", size, (0, 0, 0, 0))
+    ImageDraw.Draw(scratch).text((pad - left, pad - top), text, font=font, fill=_rgba(fill),
+                                 anchor=anchor)
+    # the anchor sat at (pad - left, pad - top) in the scratch image; after a
+    # counter-clockwise quarter turn it sits at (pad - top, width - pad + left)
+    return scratch.rotate(90, expand=True), (pad - top, scratch.width - (pad - left))
 
 
 def _reduce_rgb(image: Image.Image, factor: int) -> Image.Image:

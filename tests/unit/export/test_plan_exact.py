@@ -21,7 +21,7 @@ from shapely.geometry import Point, Polygon
 from shapely.ops import unary_union
 
 from cga.export import drawing
-from cga.export.drawing import Area, Drawing, Polyline, Style, render_png
+from cga.export.drawing import Area, Drawing, Polyline, Style, Text, render_png
 from cga.export.plan import _corners, _obstacles, _scale_x
 from cga.model import OUTSIDE, Wall
 
@@ -91,3 +91,15 @@ def test_a_closed_stroke_capped_once_paints_the_page_of_two_caps(monkeypatch):
     monkeypatch.setattr(drawing, "_ends", lambda piece: (piece[0], piece[-1]))
     assert once == render_png(page)
     assert Image.open(io.BytesIO(once)).size == (90, 70)
+
+
+def test_turned_labels_drawn_once_paint_the_page_of_labels_drawn_each_time(monkeypatch):
+    page = Drawing(width=160, height=90, title="labels")
+    for k, (x, y) in enumerate(((20.3, 60.7), (45.5, 61.2), (70.81, 58.06), (95.0, 70.0))):
+        page.add("a", Text((x, y), "chair", 8.5, angle=90, anchor=("middle", "start")[k % 2]))
+        page.add("a", Text((x + 10.2, y), "bed", 7.5, "#5d544a", angle=90, bold=k == 3))
+    drawing._turned_text.cache_clear()
+    kept = render_png(page)
+    assert drawing._turned_text.cache_info().hits > 0
+    monkeypatch.setattr(drawing, "_turned_text", drawing._turned_text.__wrapped__)
+    assert kept == render_png(page)
