@@ -18,7 +18,7 @@ from shapely.geometry.polygon import orient
 
 from cga.mesh import TriangleMesh
 
-__all__ = ["prism", "prism_mesh"]
+__all__ = ["oriented_rings", "prism", "prism_mesh"]
 
 
 def prism(area: Polygon | MultiPolygon, y_low: float,
@@ -31,7 +31,7 @@ def prism(area: Polygon | MultiPolygon, y_low: float,
     first, then the top cap's, then the sides'; vertices are the rings' corners at
     ``y_low``, then the same at ``y_high``.
     """
-    rings = _rings(area)
+    rings = oriented_rings(area)
     sizes = tuple(len(ring) for ring in rings)
     n = sum(sizes)
     caps = np.asarray(manifold3d.triangulate(rings), dtype=np.int64)
@@ -43,7 +43,7 @@ def prism(area: Polygon | MultiPolygon, y_low: float,
     return vertices.reshape(2 * n, 3), np.concatenate([caps, caps[:, ::-1] + n, _sides(sizes)])
 
 
-def _rings(area: Polygon | MultiPolygon) -> list[np.ndarray]:
+def oriented_rings(area: Polygon | MultiPolygon) -> list[np.ndarray]:
     """The corners of every ring of ``area`` (not repeating the first), exteriors
     counter-clockwise and holes clockwise in ``(x, z)``, polygon by polygon."""
     rings = []

@@ -24,13 +24,12 @@ import manifold3d
 import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
-from shapely.geometry.polygon import orient
 
 from cga.mesh import TriangleMesh, is_watertight
 from cga.model import FloorPlan, Opening, Wall
 from cga.scene import SceneNode
 
-from .prisms import prism
+from .prisms import oriented_rings, prism
 
 __all__ = ["wall_footprints", "floor_nodes"]
 
@@ -241,9 +240,7 @@ def _slab(area: Polygon | MultiPolygon, rooms: list[Polygon], y_low: float,
     for piece in [*pieces, rest]:
         for polygon in getattr(piece, "geoms", [piece]):
             if isinstance(polygon, Polygon) and polygon.area > _SLIVER:
-                polygon = orient(polygon, sign=1.0)
-                rings.append([np.asarray(r.coords)[:-1]
-                              for r in (polygon.exterior, *polygon.interiors)])
+                rings.append(oriented_rings(polygon))
     n = len(vertices) // 2
     index = {_key(p): k for k, p in enumerate(vertices[n:, [0, 2]].tolist(), start=n)}
     extra: list[tuple[float, float, float]] = []
