@@ -91,12 +91,42 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
     ExportError
         A value cannot be represented in JSON (e.g. a NaN in the checks).
     """
+    return _clean(_document(scene, nodes))
+
+
+def scene_json_text(scene: Scene, nodes: Sequence[SceneNode]) -> str:
+    """The document as text: :func:`json_text` of :func:`scene_as_dict`.
+
+    Written in one walk over the document as :func:`_document` makes it, rounding floats
+    as they are written: the text of cleaning it (:func:`_clean`) and then writing it,
+    without the second walk. A value that walk does not take as it is (not plain JSON
+    data, a number not finite, a key not exactly a string) sends the document the long
+    way, which converts it or names where it is unfit.
+
+    Raises
+    ------
+    ExportError
+        A value cannot be represented in JSON (e.g. a NaN in the checks).
+    """
+    return _document_text(_document(scene, nodes))
+
+
+def _document_text(document: Any) -> str:
+    """``json_text(_clean(document))``, in one walk where it can (:func:`scene_json_text`)."""
+    try:
+        return _text(document, _Rounded)
+    except (TypeError, ValueError):
+        return json_text(_clean(document))
+
+
+def _document(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
+    """The document before :func:`_clean`: numbers as the model holds them."""
     labels = _node_labels(nodes)
     node_paths = set(labels)
     leaves = {node.path: node for node in nodes if node.door is not None}
     floors = scene.floors
     stairs = sorted({s.id: s for p in floors for s in p.stairs}.values(), key=lambda s: s.id)
-    document = {
+    return {
         "format": FORMAT,
         "format_version": FORMAT_VERSION,
         "generator": {"name": "cga", "version": cga.__version__},
@@ -122,7 +152,7 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "quality": quality_report(list(floors)),
         "nodes": [{**_node(n), **labels[n.path]} for n in nodes],
         "classes": [{"id": c.id, "name": c.name, "group": c.group} for c in class_table()],
-        "diagnostics": [dataclasses.asdict(d) for d in scene.all_diagnostics()],
+        "diagnostics": [_fields(d) for d in scene.all_diagnostics()],
         "checks": {name: {**report.to_dict(), "summary": report.summary()}
                    for name, report in scene.checks.items()},
         "timings": dict(scene.timings),
@@ -130,12 +160,6 @@ def scene_as_dict(scene: Scene, nodes: Sequence[SceneNode]) -> dict[str, Any]:
         "appearance": {"mode": scene.looks().mode, "materials": _materials(nodes)},
         "lights": [_light(light) for light in scene.lights],
     }
-    return _clean(document)
-
-
-def scene_json_text(scene: Scene, nodes: Sequence[SceneNode]) -> str:
-    """The document as text (:func:`json_text`)."""
-    return json_text(scene_as_dict(scene, nodes))
 
 
 def json_text(document: Any) -> str:
@@ -156,63 +180,69 @@ def json_text(document: Any) -> str:
         A value is not JSON data (dict with string keys, list, tuple, string, number,
         bool, None).
     """
+    return _text(document, _Plain)
+
+
+def _text(document: Any, style: type[_Plain]) -> str:
+    """The text of ``document`` (:func:`json_text`), its numbers written in ``style``."""
     parts: list[str] = []
-    _write(document, "\n", parts)
+    _write(document, "\n", parts, style)
     parts.append("\n")
     return "".join(parts)
 
 
-def _write(value: Any, newline: str, parts: list[str]) -> None:
+def _write(value: Any, newline: str, parts: list[str], style: type[_Plain]) -> None:
     """Append the JSON text of ``value`` to ``parts``; ``newline`` is a line break and
     the indent of the line ``value`` starts on."""
-    text = _one_line(value)
+    text = _one_line(value, style)
     if text is not None:
         parts.append(text)
     else:
-        _write_block(value, newline, parts)
+        _write_block(value, newline, parts, style)
 
 
-def _write_block(value: dict[Any, Any] | Sequence[Any], newline: str, parts: list[str]) -> None:
+def _write_block(value: dict[Any, Any] | Sequence[Any], newline: str, parts: list[str],
+                 style: type[_Plain]) -> None:
     """Append a dict or list that :func:`_one_line` spreads over lines."""
     if isinstance(value, dict):
-        _write_dict(value, newline, parts)
+        _write_dict(value, newline, parts, style)
     else:
-        _write_list(value, newline, parts)
+        _write_list(value, newline, parts, style)
 
 
-def _write_dict(value: dict[Any, Any], newline: str, parts: list[str]) -> None:
+def _write_dict(value: dict[Any, Any], newline: str, parts: list[str],
+                style: type[_Plain]) -> None:
     inner = newline + "  "
     lead = "{" + inner
     for key in sorted(value):
-        if not isinstance(key, str):
-            raise TypeError(f"keys must be str, not {type(key).__name__}")
         item = value[key]
-        head = lead + _string(key) + ": "
-        text = _one_line(item)  # most values: one append, no call further down
+        head = lead + _string(key if type(key) is str else style.key(key)) + ": "
+        text = _one_line(item, style)  # most values: one append, no call further down
         if text is not None:
             parts.append(head + text)
         else:
             parts.append(head)
-            _write_block(item, inner, parts)
+            _write_block(item, inner, parts, style)
         lead = "," + inner
     parts.append(newline + "}")
 
 
-def _write_list(value: Sequence[Any], newline: str, parts: list[str]) -> None:
+def _write_list(value: Sequence[Any], newline: str, parts: list[str],
+                style: type[_Plain]) -> None:
     inner = newline + "  "
     lead = "[" + inner
     for item in value:
-        text = _one_line(item)
+        text = _one_line(item, style)
         if text is not None:
             parts.append(lead + text)
         else:
             parts.append(lead)
-            _write_block(item, inner, parts)
+            _write_block(item, inner, parts, style)
         lead = "," + inner
     parts.append(newline + "]")
 
 
-def _one_line(value: Any) -> str | None:
+def _one_line(value: Any, style: type[_Plain]) -> str | None:
     """The text of ``value`` when it is written on one line (a scalar, an empty dict or
     list, a list of only numbers), None for a dict or list spread over lines."""
     kind = type(value)  # exact types first, the commonest first: nearly every value is one
@@ -223,18 +253,18 @@ def _one_line(value: Any) -> str | None:
     if kind is dict:
         return None if value else "{}"
     if kind is float:
-        return _scalar(value)
+        return style.scalar(value)
     if kind is bool or value is None:
         return _LITERALS[value]
     if kind is list or kind is tuple:
-        return _numbers(value) if value else "[]"
+        return _numbers(value, style) if value else "[]"
     if isinstance(value, str):
         return _string(value)
     if isinstance(value, dict):
         return None if value else "{}"
     if isinstance(value, (list, tuple)):
-        return _numbers(value) if value else "[]"
-    return _scalar(value)
+        return _numbers(value, style) if value else "[]"
+    return style.scalar(value)
 
 
 _LITERALS = {True: "true", False: "false", None: "null"}
@@ -243,16 +273,16 @@ _PLAIN_NUMBERS = frozenset({float, int})
 """The exact types whose :func:`repr` is their JSON text (NaN and infinities aside)."""
 
 
-def _numbers(values: Sequence[Any]) -> str | None:
+def _numbers(values: Sequence[Any], style: type[_Plain]) -> str | None:
     """A non-empty list of only numbers (points, matrix rows) on one line, None for any
     other list."""
     if _PLAIN_NUMBERS.issuperset(map(type, values)):
-        text = ", ".join(map(repr, values))
+        text = style.numbers(values)
         if "n" not in text:  # "nan", "inf": no finite number's repr has an n
             return "[" + text + "]"
     elif not all(_is_number(v) for v in values):
         return None
-    return "[" + ", ".join(map(_scalar, values)) + "]"
+    return "[" + ", ".join(map(style.scalar, values)) + "]"
 
 
 def _is_number(value: Any) -> bool:
@@ -264,19 +294,76 @@ _string = encode_basestring
 """A JSON string literal, as :mod:`json` writes it with ``ensure_ascii=False``."""
 
 
-def _scalar(value: Any) -> str:
-    """A JSON number or literal, as :mod:`json` writes it."""
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise ValueError(f"Out of range float values are not JSON compliant: {value!r}")
-        return float.__repr__(value)
-    if value is None:
-        return "null"
-    if value is True or value is False:
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return int.__repr__(value)
-    raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
+class _Plain:
+    """How :func:`json_text` writes numbers and keys: as :mod:`json` does."""
+
+    @staticmethod
+    def numbers(values: Sequence[float | int]) -> str:
+        """Floats and ints (exactly those types) as JSON text, comma-separated, NaN as
+        ``nan`` and infinities as ``inf``."""
+        return ", ".join(map(repr, values))
+
+    @staticmethod
+    def scalar(value: Any) -> str:
+        """A JSON number or literal, as :mod:`json` writes it.
+
+        Raises
+        ------
+        ValueError
+            A float is NaN or infinite.
+        TypeError
+            ``value`` is not a number, a bool or None.
+        """
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                raise ValueError(f"Out of range float values are not JSON compliant: {value!r}")
+            return float.__repr__(value)
+        if value is None:
+            return "null"
+        if value is True or value is False:
+            return "true" if value else "false"
+        if isinstance(value, int):
+            return int.__repr__(value)
+        raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
+
+    @staticmethod
+    def key(key: Any) -> str:
+        """A dict key that is not exactly a :class:`str`: a subclass as it is.
+
+        Raises
+        ------
+        TypeError
+            ``key`` is not a string.
+        """
+        if not isinstance(key, str):
+            raise TypeError(f"keys must be str, not {type(key).__name__}")
+        return key
+
+
+class _Rounded(_Plain):
+    """How :func:`scene_json_text` writes numbers and keys: as :func:`json_text` writes
+    them once :func:`_clean` has converted them (floats rounded to 1e-6, ``-0.0`` →
+    ``0.0``, float and int subclasses as floats and ints). Any other value, and a key
+    not exactly a string, raises :class:`TypeError`: :func:`_clean` has to convert it."""
+
+    @staticmethod
+    def numbers(values: Sequence[float | int]) -> str:
+        return ", ".join([repr(round(v, _DIGITS) + 0.0) if type(v) is float else repr(v)
+                          for v in values])
+
+    @staticmethod
+    def scalar(value: Any) -> str:
+        if isinstance(value, float):
+            return _Plain.scalar(round(float(value), _DIGITS) + 0.0)
+        if isinstance(value, int) and not isinstance(value, bool):
+            return int.__repr__(int(value))
+        if value is None or isinstance(value, bool):
+            return _Plain.scalar(value)
+        raise TypeError(f"a {type(value).__name__} is left to _clean")
+
+    @staticmethod
+    def key(key: Any) -> str:
+        raise TypeError(f"a {type(key).__name__} key is left to _clean")
 
 
 def export_scene_json(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
@@ -287,6 +374,13 @@ def export_scene_json(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path,
 
 # -- pieces -----------------------------------------------------------------------------
 
+def _fields(value: Any) -> dict[str, Any]:
+    """A dataclass instance's fields by name, as they are: once :func:`_clean` has
+    converted them (nested dataclasses too) the very data :func:`dataclasses.asdict`
+    gives, without its deep copy of every value (a fifth of the document's making)."""
+    return {field.name: getattr(value, field.name) for field in dataclasses.fields(value)}
+
+
 def _floor(plan: FloorPlan) -> dict[str, Any]:
     return {
         "index": plan.index,
@@ -296,7 +390,7 @@ def _floor(plan: FloorPlan) -> dict[str, Any]:
         "is_top": plan.is_top,
         "footprint": _polygon(plan.footprint),
         "area": float(plan.footprint.area),
-        "settings": dataclasses.asdict(plan.settings),
+        "settings": _fields(plan.settings),
         "stairwell": _polygon(plan.stairwell) if plan.stairwell is not None else None,
         "stair_core": plan.core_room,
     }
@@ -330,7 +424,7 @@ def _wall(plan: FloorPlan, wall: Wall) -> dict[str, Any]:
         "rooms": list(wall.rooms),
         "thickness": wall.thickness,
         "openings": [
-            {**dataclasses.asdict(o), "position": list(wall.point_at(o.center))}
+            {**_fields(o), "position": list(wall.point_at(o.center))}
             for o in sorted(wall.openings, key=lambda o: (o.center, o.kind))
         ],
     }

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import dataclasses
+import enum
 import json
 import re
+from pathlib import Path
 
 import jsonschema
 import numpy as np
@@ -199,3 +201,43 @@ def test_furniture_bounds_are_the_footprints_bounds(x, z, w, d, rotation, yaw):
     item = FurnitureItem(name="t", model="m", room=0, position=(x, z), rotation=rotation,
                          size=(w, 0.8, d), yaw=yaw)
     assert _footprint_bounds(item) == item.footprint().bounds
+
+
+class _Key(str, enum.Enum):
+    """A key whose ``str`` is not its text (``_Key.a`` → ``"_Key.a"``)."""
+
+    a = "a"
+
+
+@dataclasses.dataclass
+class _Point:
+    x: float
+    y: int
+
+
+_RAW_SCALARS = (_SCALARS | st.just(-0.0) | st.sampled_from([float("nan"), float("inf")])
+                | st.floats(-1e6, 1e6).map(np.float64) | st.integers(-9, 9).map(np.int64)
+                | st.floats(-1e3, 1e3).map(lambda x: _Point(x, 1))
+                | st.just(Path("a/b")) | st.just(np.arange(3) / 7))
+_RAW_DOCUMENTS = st.recursive(_RAW_SCALARS, lambda inner: (
+    st.lists(inner, max_size=4) | st.lists(inner, max_size=3).map(tuple)
+    | st.lists(st.floats(-1e9, 1e9) | st.integers(-5, 5), min_size=1, max_size=4)
+    | st.dictionaries(st.text(max_size=4) | st.integers(0, 3) | st.just(_Key.a), inner,
+                      max_size=4)), max_leaves=30)
+
+
+@settings(max_examples=300, deadline=None)
+@given(_RAW_DOCUMENTS)
+def test_scene_text_in_one_walk_is_the_cleaned_documents_text(document):
+    """The scene document written in one walk, rounding as it goes, is the text of the
+    cleaned document, or the same error where it cannot be cleaned (NaN, a type with no
+    JSON form): numpy numbers, tuples, dataclasses, non-string keys and NaN included."""
+    from cga.export.scene_json import _clean, _document_text
+
+    try:
+        expected = json_text(_clean(document))
+    except (ExportError, TypeError) as error:  # TypeError: keys that do not sort
+        with pytest.raises(type(error), match=re.escape(str(error))):
+            _document_text(document)
+    else:
+        assert _document_text(document) == expected
