@@ -5,8 +5,9 @@ furniture that reaches into that height band (a table top at 0.75 m blocks a rob
 1.2 m, a rug does not). For one floor plan, :func:`occupancy_grid` takes every scene node
 whose solid meets the band (relative to the floor's walking surface), projects the slice
 of the solid inside the band onto the floor exactly (convex furniture parts directly;
-other solids, such as walls with openings, with manifold3d: clip by two planes, then take
-the shadow), and rasterises the shadows. A wall keeps its door gaps open
+rectilinear solids, such as walls with openings, on the grid of their own planes
+(:mod:`cga.checks._rectilinear`); other solids with manifold3d: clip by two planes, then
+take the shadow), and rasterises the shadows. A wall keeps its door gaps open
 because the slice of the band through a door opening is empty, and a window with its
 sill inside the band stays closed because the wall below the sill is in the band.
 
@@ -44,6 +45,7 @@ from cga.model import FloorPlan
 from cga.scene import MeshArrays, NodeKind, SceneNode
 
 from ._raster import Patch, polygon_patches
+from ._rectilinear import rectilinear_shadows, union_by_owner
 from ._solids import as_manifold
 
 __all__ = [
@@ -192,7 +194,9 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
     A furniture node made of convex parts is the union of its parts' shadows, computed
     directly (the slice of a convex solid between two planes is convex, so its shadow is
     the hull of its vertices in the band and of its edges' crossings with the planes).
-    Other meshes are clipped and projected with manifold3d. A mesh that is not a
+    A rectilinear solid's shadow is the union of the cells of its plan grid that it fills
+    in the band (:mod:`cga.checks._rectilinear`: manifold3d's region, to the bit). Other
+    meshes are clipped and projected with manifold3d. A mesh that is not a
     watertight solid (an open surface) is taken triangle by triangle: the shadow of its
     triangles clipped to the band, thickened by 1 mm so that a vertical sheet still
     blocks the cells it crosses.
@@ -202,9 +206,12 @@ def band_footprint(node: SceneNode, y0: float, y1: float) -> BaseGeometry:
 
 def band_footprints(nodes: Sequence[SceneNode], y0: float, y1: float) -> list[BaseGeometry]:
     """:func:`band_footprint` of every node, in order; the convex parts of all the
-    nodes are sliced and hulled in one vectorised pass (:func:`_convex_shadows`)."""
+    nodes are sliced and hulled in one vectorised pass (:func:`_convex_shadows`), and
+    the rectilinear solids (walls, slabs, stairs) are shadowed in another
+    (:mod:`cga.checks._rectilinear`: the same regions as manifold3d's)."""
     out: list[BaseGeometry | None] = [None] * len(nodes)
     convex: list[int] = []
+    solids: list[int] = []
     for k, node in enumerate(nodes):
         lo, hi = node.mesh.bounds
         if hi[1] <= y0 or lo[1] >= y1:
@@ -212,11 +219,12 @@ def band_footprints(nodes: Sequence[SceneNode], y0: float, y1: float) -> list[Ba
         elif node.parts and node.convex_parts:
             convex.append(k)
         else:
-            out[k] = _solid_footprint(node.mesh, y0, y1)
+            solids.append(k)
     shadows = _convex_shadows([[p for p in nodes[k].parts if len(p.faces)] for k in convex],
                               y0, y1)
-    for k, shadow in zip(convex, shadows):
-        out[k] = shadow
+    shadows += rectilinear_shadows([nodes[k].mesh for k in solids], y0, y1)
+    for k, shadow in zip(convex + solids, shadows):
+        out[k] = shadow if shadow is not None else _solid_footprint(nodes[k].mesh, y0, y1)
     return [g if g is not None else Polygon() for g in out]
 
 
@@ -244,15 +252,16 @@ def _band_points(parts: Sequence[MeshArrays], y0: float,
     heights ``y0`` and ``y1`` (its vertices in the band and its edges' crossings with
     the two planes), all parts at once: ``(points, owner)`` with the index of each
     point's part, grouped by part, in the order vertices, lower crossings, upper ones."""
+    if not parts:
+        return np.zeros((0, 2)), np.zeros(0, dtype=np.int64)
     vertices = [np.asarray(part.vertices, dtype=float) for part in parts]
     faces = [np.asarray(part.faces) for part in parts]
     sizes = np.array([len(v) for v in vertices], dtype=np.int64)
     starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-    points = np.concatenate(vertices) if parts else np.zeros((0, 3))
+    points = np.concatenate(vertices)
     vertex_owner = np.repeat(np.arange(len(parts)), sizes)
-    edges = (np.concatenate([f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2) + s
-                             for f, s in zip(faces, starts)])
-             if parts else np.zeros((0, 2), dtype=np.int64))
+    edges = (np.concatenate(faces)[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+             + np.repeat(starts, [3 * len(f) for f in faces])[:, None])
     edge_owner = vertex_owner[edges[:, 0]]
     y = points[:, 1]
     inside = (y >= y0) & (y <= y1)
@@ -274,20 +283,21 @@ def _convex_shadows(groups: Sequence[Sequence[MeshArrays]], y0: float,
     slices of its parts between heights ``y0`` and ``y1``: each the hull of
     :func:`_band_points`, a degenerate hull (a part seen edge-on) thickened by
     :data:`_SHEET`. The hulls of all groups are made in one vectorised call and united
-    per group in another."""
+    per group in another.
+
+    Each part's points go to GEOS as a line string, not a multipoint: a hull is made
+    of the distinct points in their order either way, and a line string is made
+    without a point geometry per point (a part with a single point has it twice)."""
     parts = [part for group in groups for part in group]
     group_of = np.repeat(np.arange(len(groups)), [len(g) for g in groups])
     points, owner = _band_points(parts, y0, y1)
     kept, owner = np.unique(owner, return_inverse=True)  # parts with points, in order
-    hulls = shapely.convex_hull(shapely.multipoints(points, indices=owner))
+    twice = np.where(np.bincount(owner)[owner] == 1, 2, 1)
+    hulls = shapely.convex_hull(shapely.linestrings(np.repeat(points, twice, axis=0),
+                                                    indices=np.repeat(owner, twice)))
     flat = shapely.get_type_id(hulls) != shapely.GeometryType.POLYGON
     hulls[flat] = shapely.buffer(hulls[flat], _SHEET)
-    # one row of hulls per group, in part order, padded with None (ignored by the union)
-    rows = group_of[kept]
-    column = np.arange(len(kept)) - np.searchsorted(rows, rows)
-    table = np.full((len(groups), int(column.max(initial=-1)) + 1), None, dtype=object)
-    table[rows, column] = hulls
-    return list(shapely.union_all(table, axis=1)) if len(groups) else []
+    return list(union_by_owner(hulls, group_of[kept], len(groups)))
 
 
 def _sheet_footprint(mesh: MeshLike, y0: float, y1: float) -> BaseGeometry:
@@ -378,8 +388,8 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
 
     Notes
     -----
-    One exact clip-and-project per structure node, one vectorised slice-and-hull pass
-    over all the furniture's convex parts, and the shadows' cells, kept for
+    One vectorised pass over the rectilinear structure nodes (an exact clip-and-project
+    for any other), one over all the furniture's convex parts, and the shadows' cells, kept for
     :meth:`OccupancyGrid.occupied_by`, filled by Pillow's rule in one numpy pass (Pillow
     itself draws the few with a slanted edge or a hole: :mod:`cga.checks._raster`).
     """
