@@ -32,7 +32,7 @@ from typing import Literal
 
 import numpy as np
 import shapely
-from shapely.geometry import LineString, MultiPolygon, Point as ShapelyPoint, Polygon
+from shapely.geometry import MultiPolygon, Point as ShapelyPoint, Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.ops import polylabel, unary_union
 
@@ -91,11 +91,25 @@ class _Paper:
     def ring(self, coords: Sequence[Sequence[float]]) -> tuple[Point, ...]:
         return tuple(self.point(c[0], c[1]) for c in coords)
 
+    def points(self, coords: np.ndarray) -> list[Point]:
+        """The points of an ``n × 2`` array: :meth:`point`'s sums, element by element
+        (the same floats), without a call per point."""
+        xs = self.left + (coords[:, 0] - self.min_x) * self.scale
+        zs = self.top + (coords[:, 1] - self.min_z) * self.scale
+        return list(zip(xs.tolist(), zs.tolist()))
+
+    def lines(self, geometries: Sequence[BaseGeometry]) -> list[tuple[Point, ...]]:
+        """The points of each linestring or ring in ``geometries``, read in one pass."""
+        points = self.points(shapely.get_coordinates(geometries))
+        ends = np.cumsum(shapely.get_num_coordinates(geometries)).tolist()
+        return [tuple(points[start:end]) for start, end in zip([0, *ends], ends)]
+
     def areas(self, geometry: BaseGeometry) -> list[tuple[tuple[Point, ...], ...]]:
+        """The rings of each polygon of ``geometry``, outline first, without the
+        closing repeat of the first point."""
         polygons = (geometry.geoms if isinstance(geometry, MultiPolygon)
                     else [geometry] if isinstance(geometry, Polygon) else [])
-        return [(self.ring(p.exterior.coords[:-1]),
-                 *(self.ring(h.coords[:-1]) for h in p.interiors))
+        return [tuple(ring[:-1] for ring in self.lines([p.exterior, *p.interiors]))
                 for p in polygons if not p.is_empty]
 
 
@@ -196,11 +210,11 @@ def _hatch(drawing: Drawing, paper: _Paper, region: Polygon, layer: str = "rooms
     offsets = (min_x + min_z + k * spacing for k in range(count + 1))  # lines x + z = c
     lines = shapely.linestrings([[(c - min_z + 1, min_z - 1), (c - max_z - 1, max_z + 1)]
                                  for c in offsets])
-    for piece in shapely.intersection(lines, region):  # all lines in one call
-        for part in getattr(piece, "geoms", [piece]):
-            if isinstance(part, LineString) and not part.is_empty:
-                drawing.add(layer, Polyline(tuple(paper.point(x, z) for x, z in part.coords),
-                                              _HATCHING, css_class="circulation"))
+    parts = shapely.get_parts(shapely.intersection(lines, region))  # all lines in one call
+    parts = parts[(shapely.get_type_id(parts) == shapely.GeometryType.LINESTRING)
+                  & ~shapely.is_empty(parts)]  # not the points where a line grazes a corner
+    for points in paper.lines(parts):
+        drawing.add(layer, Polyline(points, _HATCHING, css_class="circulation"))
 
 
 def _item_label(item: FurnitureItem) -> str:
@@ -212,20 +226,27 @@ def _item_label(item: FurnitureItem) -> str:
 
 def _draw_furniture(drawing: Drawing, paper: _Paper,
                     footprints: Sequence[tuple[FurnitureItem, Polygon]]) -> None:
-    """The items with their footprints (detail items such as door leaves left out)."""
-    for item, footprint in footprints:
-        ring = paper.ring(footprint.exterior.coords[:-1])
+    """The items with their footprints (detail items such as door leaves left out);
+    outlines, boxes and centres of all footprints read in one pass each."""
+    shapes = [footprint for _, footprint in footprints]
+    rings = paper.lines(shapely.get_exterior_ring(shapes))
+    boxes = shapely.bounds(shapes).tolist()
+    centres = paper.points(shapely.get_coordinates(shapely.centroid(shapes)))
+    for (item, _), ring, box, centre in zip(footprints, rings, boxes, centres):
         if item.non_collision:
-            drawing.add("furniture", Polyline(ring, _RUG, closed=True, css_class="furniture rug"))
+            drawing.add("furniture", Polyline(ring[:-1], _RUG, closed=True,
+                                              css_class="furniture rug"))
         else:
-            drawing.add("furniture", Area((ring,), _FURNITURE, css_class="furniture"))
-        _draw_item_name(drawing, paper, item, footprint)
+            drawing.add("furniture", Area((ring[:-1],), _FURNITURE, css_class="furniture"))
+        _draw_item_name(drawing, paper, item, box, centre)
 
 
 def _draw_item_name(drawing: Drawing, paper: _Paper, item: FurnitureItem,
-                    footprint: Polygon) -> None:
+                    bounds: Sequence[float], centre: Point) -> None:
+    """The item's name at ``centre`` (paper) of its footprint, turned to read along a
+    footprint (plan ``bounds``) too narrow for it across."""
     label = _item_label(item)
-    min_x, min_z, max_x, max_z = footprint.bounds
+    min_x, min_z, max_x, max_z = bounds
     across, along = (max_x - min_x) * paper.scale - 4, (max_z - min_z) * paper.scale - 4
     size = 8.5
     for candidate in (8.5, 7.5, 6.5):
@@ -233,7 +254,7 @@ def _draw_item_name(drawing: Drawing, paper: _Paper, item: FurnitureItem,
         if text_width(label, size) <= max(across, along):
             break
     vertical = text_width(label, size) > across and along > across and not item.non_collision
-    cx, cy = paper.point(*footprint.centroid.coords[0])
+    cx, cy = centre
     angle: Literal[0, 90]
     if item.non_collision:  # rugs: name along the bottom edge, clear of what stands on them
         position, angle = (cx, paper.point(min_x, max_z)[1] - 3), 0

@@ -22,7 +22,7 @@ from shapely.ops import unary_union
 
 from cga.export import drawing
 from cga.export.drawing import Area, Drawing, Polyline, Style, Text, render_png
-from cga.export.plan import _corners, _obstacles, _scale_x
+from cga.export.plan import _corners, _obstacles, _Paper, _scale_x
 from cga.model import OUTSIDE, Wall
 
 DEMOS = Path(__file__).resolve().parents[3] / "demos"
@@ -103,3 +103,13 @@ def test_turned_labels_drawn_once_paint_the_page_of_labels_drawn_each_time(monke
     assert drawing._turned_text.cache_info().hits > 0
     monkeypatch.setattr(drawing, "_turned_text", drawing._turned_text.__wrapped__)
     assert kept == render_png(page)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(coordinate, coordinate), max_size=20),
+       st.tuples(coordinate, coordinate), st.floats(1.0, 120.0))
+def test_paper_points_in_one_pass_are_the_points_one_by_one(points, corner, scale):
+    paper = _Paper(corner[0], corner[1], scale, 48.0, 56.0)
+    array = np.array(points, dtype=float).reshape(-1, 2)
+    expected = [paper.point(x, z) for x, z in points]
+    assert np.array(paper.points(array)).tobytes() == np.array(expected).tobytes()
