@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import struct
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -438,6 +439,14 @@ def _mesh_key(primitives: Sequence[_Primitive]) -> str:
     return digest.hexdigest()
 
 
+def _byte_steps(rgba: Sequence[float]) -> list[float]:
+    """RGBA in 0..1 on 1/255 steps, as trimesh stored a colour (as 8 bits): each value
+    not finite taken as 0, clipped to 0..1, the nearest step (ties to even, as
+    :func:`numpy.round`). Plain floats: numpy costs more than the arithmetic on four."""
+    return [round(min(max(v * 255, 0.0), 255.0)) / 255 if math.isfinite(v) else 0.0
+            for v in rgba]
+
+
 class _Gltf:
     """A glTF document being written: nodes, meshes, materials, accessors and the bytes
     of its one buffer, laid out as trimesh's exporter laid them out (module notes).
@@ -486,11 +495,8 @@ class _Gltf:
         8-bit colour); materials whose glTF forms are equal are written once."""
         index = self._material_index.get(material)
         if index is None:
-            rgba = np.asarray(material.linear_rgba(), dtype=np.float64)
-            rgba[~np.isfinite(rgba)] = 0.0
-            steps = np.clip(rgba * 255, 0.0, 255).round().astype(np.uint8)
             written: dict[str, Any] = {"pbrMetallicRoughness": {
-                "baseColorFactor": (steps.astype(np.float64) / 255).tolist(),
+                "baseColorFactor": _byte_steps(material.linear_rgba()),
                 "roughnessFactor": float(material.roughness),
                 "metallicFactor": float(material.metallic)}, "name": material.name}
             if material.transparent:
@@ -650,8 +656,8 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     instances = instance_ids(nodes)
     names = class_names()
     pivots = [node_pivot(node) for node in nodes]
-    local = [_local_vertices(node, inverse)
-             for node, inverse in zip(nodes, _local_transforms(pivots))]
+    inverses = _local_transforms(pivots)
+    local = [_local_vertices(node, inverse) for node, inverse in zip(nodes, inverses)]
     sources = [_source_key(node, vertices) for node, vertices in zip(nodes, local)]
     first: dict[tuple[bytes, tuple[Material, ...]], int] = {}
     meshed = [i for i, source in enumerate(sources)
@@ -681,7 +687,8 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
                              primitives)
             if source is not None:
                 made_from[source] = mesh
-        gltf.node(node.path, parent, extras, matrix=pivots[i], mesh=mesh)
+        pivot = None if inverses[i] is None else pivots[i]  # the identity is not written
+        gltf.node(node.path, parent, extras, matrix=pivot, mesh=mesh)
         made.add(node.path)
     lights = _add_lights(gltf, scene, root, groups, made)
     return gltf.glb(json_safe({"generator": "cga", "name": scene.name, "seed": scene.seed,

@@ -208,3 +208,17 @@ def test_runs_are_bounded_as_each_alone(lengths, kind, random):
         assert np.array_equal(array.data, run)
         rows = run.reshape(length, -1)
         assert array.high == rows.max(axis=0).tolist() and array.low == rows.min(axis=0).tolist()
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.floats(-2, 2) | st.sampled_from([float("nan"), float("inf"), -0.0, 0.5 / 255,
+                                                    1.5 / 255, 2.5 / 255]), min_size=4, max_size=4))
+def test_colour_steps_are_numpy_s_clip_round_and_cast(rgba):
+    """The base colour's 1/255 steps in plain floats are those of the numpy steps the
+    writer took (non-finite → 0, clip, round half to even, uint8, / 255)."""
+    from cga.export.glb import _byte_steps
+
+    values = np.asarray(rgba, dtype=np.float64)
+    values[~np.isfinite(values)] = 0.0
+    steps = np.clip(values * 255, 0.0, 255).round().astype(np.uint8)
+    assert _byte_steps(rgba) == (steps.astype(np.float64) / 255).tolist()
