@@ -35,7 +35,7 @@ def triangle_arrays(draw) -> np.ndarray:
     return np.array(values, dtype=np.float64).reshape(count, 3, 3)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(triangle_arrays())
 def test_crosses_are_numpy_s_cross_product_bit_for_bit(triangles):
     edges = triangles[:, 1:, :] - triangles[:, :2, :]
@@ -43,7 +43,7 @@ def test_crosses_are_numpy_s_cross_product_bit_for_bit(triangles):
     assert same_bits(_crosses(triangles), trimesh.triangles.cross(triangles))
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(triangle_arrays())
 def test_corner_means_are_numpy_s_mean_bit_for_bit(triangles):
     assert same_bits(corner_means(triangles), triangles.mean(axis=1))
@@ -119,7 +119,7 @@ def test_mirrors_is_the_sign_of_the_determinant(turns, yaw, scale, signs, offset
     assert mirrors(matrix) == bool(np.linalg.det(matrix[:3, :3]) < 0)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=80, deadline=None)
 @given(st.lists(triangle_arrays(), min_size=1, max_size=6))
 def test_normals_and_centres_of_meshes_together_are_theirs_one_by_one(meshes):
     """The dressing works out a storey's walls together (BLAS sums each row alone)."""
