@@ -102,6 +102,8 @@ def json_safe(value: Any) -> Any:
         return {k: value[k] for k in sorted(value)}
     if kind is dict:
         return {str(k): json_safe(value[k]) for k in sorted(value, key=str)}
+    if kind is list or kind is tuple:
+        return [json_safe(v) for v in value]
     if value is None or isinstance(value, (bool, str)):
         return value
     if isinstance(value, (int, float)):

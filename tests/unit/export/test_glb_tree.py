@@ -222,3 +222,39 @@ def test_colour_steps_are_numpy_s_clip_round_and_cast(rgba):
     values[~np.isfinite(values)] = 0.0
     steps = np.clip(values * 255, 0.0, 255).round().astype(np.uint8)
     assert _byte_steps(rgba) == (steps.astype(np.float64) / 255).tolist()
+
+
+def _plain(value):
+    """json_safe's contract spelled out plainly: numpy → Python, tuples → lists,
+    mappings with sorted string keys, sets → sorted lists."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, dict):
+        return {str(k): _plain(value[k]) for k in sorted(value, key=str)}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, (set, frozenset)):
+        return sorted(_plain(v) for v in value)
+    return value
+
+
+_EXTRAS = st.recursive(
+    st.none() | st.booleans() | st.integers(-9, 9) | st.floats(allow_nan=False) | st.text(max_size=3)
+    | st.floats(-9, 9).map(np.float32) | st.integers(-9, 9).map(np.int64)
+    | st.frozensets(st.integers(0, 9), max_size=3),
+    lambda inner: (st.lists(inner, max_size=3) | st.lists(inner, max_size=3).map(tuple)
+                   | st.dictionaries(st.text(max_size=3) | st.integers(0, 20), inner, max_size=4)),
+    max_leaves=20)
+
+
+@settings(max_examples=300, deadline=None)
+@given(_EXTRAS)
+def test_json_safe_is_its_contract_spelled_out(value):
+    """json_safe's shortcuts (plain dicts, lists) give what its contract says, keys in the
+    same order."""
+    from cga.export.glb import json_safe
+
+    got, expected = json_safe(value), _plain(value)
+    assert got == expected and json.dumps(got) == json.dumps(expected)
