@@ -410,9 +410,9 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
     free_mask = np.zeros((rows, cols), dtype=bool)
     _paint(free_mask, plan.footprint, x_min, z_min, resolution)
     extent = shapely.box(x_min, z_min, x_min + cols * resolution, z_min + rows * resolution)
-    candidates = [node for node in obstacle_nodes(nodes, include_doors=include_doors)
-                  if (include_furniture or node.kind != "furniture" or node.door is not None)
-                  and _meets(node, y0, y1, extent)]
+    candidates = _meeting([node for node in obstacle_nodes(nodes, include_doors=include_doors)
+                           if include_furniture or node.kind != "furniture"
+                           or node.door is not None], y0, y1, extent)
     obstacles = [Obstacle(node.path, node.kind, footprint,
                           node.item.room if node.item is not None else None,
                           node.door.door if node.door is not None else None)
@@ -450,14 +450,17 @@ def stair_obstacles(plan: FloorPlan) -> list[Obstacle]:
     return out
 
 
-def _meets(node: SceneNode, y0: float, y1: float, extent: BaseGeometry) -> bool:
-    """Whether the node's bounding box meets the band and the grid's extent."""
-    if len(node.mesh.faces) == 0:
-        return False
-    lo, hi = node.mesh.bounds
-    if hi[1] <= y0 or lo[1] >= y1:
-        return False
-    return bool(extent.intersects(shapely.box(lo[0], lo[2], hi[0], hi[2])))
+def _meeting(nodes: Sequence[SceneNode], y0: float, y1: float,
+             extent: BaseGeometry) -> list[SceneNode]:
+    """The nodes with triangles whose bounding box meets the band and the grid's extent
+    (one vectorised test of all the boxes against the extent)."""
+    nodes = [node for node in nodes if len(node.mesh.faces)]
+    if not nodes:
+        return []
+    lo, hi = np.array([node.mesh.bounds for node in nodes]).transpose(1, 0, 2)
+    meets = (~((hi[:, 1] <= y0) | (lo[:, 1] >= y1))
+             & shapely.intersects(extent, shapely.box(lo[:, 0], lo[:, 2], hi[:, 0], hi[:, 2])))
+    return [node for node, keep in zip(nodes, meets.tolist()) if keep]
 
 
 def _paint(mask: np.ndarray, geometry: BaseGeometry, x_min: float, z_min: float,
