@@ -343,7 +343,7 @@ class _PngPainter:
         self.image.alpha_composite(turned, (round(x - ax), round(y - ay)))
 
 
-@lru_cache(maxsize=1024)
+@lru_cache(maxsize=256)
 def _turned_text(text: str, size_px: int, bold: bool, anchor: str,
                  fill: str) -> tuple[Image.Image, tuple[float, float]]:
     """``text`` reading bottom to top on a transparent image, and where its anchor lies
@@ -352,7 +352,7 @@ def _turned_text(text: str, size_px: int, bold: bool, anchor: str,
     The text is drawn horizontally on a scratch image at whole pixels and turned; as
     nothing in that depends on where the label goes on the page, the image is kept and
     a repeated label (a plan's chairs, a floor's beds) is drawn once. Callers only read
-    it.
+    it. A label image is some 3 to 15 kB, so the kept ones stay within a few MB.
     """
     font = _font(size_px, bold)
     left, top, right, bottom = font.getbbox(text, anchor=anchor)
