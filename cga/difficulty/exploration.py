@@ -24,8 +24,6 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import dijkstra
 
-from cga.checks._distance import disc_dilation
-
 __all__ = ["CELL", "SENSOR_RANGE", "MAX_GOALS", "exploration_path"]
 
 CELL = 0.25
@@ -90,6 +88,18 @@ def _row_counts(flags: np.ndarray) -> np.ndarray:
     of numpy's ``count_nonzero(axis=1)``."""
     words = np.ascontiguousarray(flags).view(np.uint64).ravel()
     return (words * np.uint64(0x0101010101010101)) >> np.uint64(56)
+
+
+def _round(mask: np.ndarray) -> np.ndarray:
+    """The cells of the 3 × 3 squares round the true cells of ``mask``
+    (``disc_dilation(mask, 2)``): grown sideways, then up and down, one cell each."""
+    wide = mask.copy()
+    wide[:, 1:] |= mask[:, :-1]
+    wide[:, :-1] |= mask[:, 1:]
+    out = wide.copy()
+    out[1:] |= wide[:-1]
+    out[:-1] |= wide[1:]
+    return out
 
 
 def _ray_offsets(reach: int) -> np.ndarray:
@@ -217,15 +227,15 @@ def exploration_path(free: np.ndarray, blocked: np.ndarray, drivable: np.ndarray
     cells = np.flatnonzero(drive)  # graph index -> flat cell
     sensor = _Sensor(_coarsen(blocked, factor, "any"), int(sensor_range / cell))
     seen = sensor.seen
-    wanted = share * int(target.sum())
+    targets = int(target.sum())
+    wanted = share * targets
     sensor.sense(position)
     driven = 0.0
     for _ in range(MAX_GOALS):
-        if int((seen & target).sum()) >= wanted:
-            break
         unseen = target & ~seen
-        frontier = drive & disc_dilation(unseen, 2)  # the 3 × 3 cells round each
-        candidates = index[frontier]
+        if targets - int(unseen.sum()) >= wanted:
+            break
+        candidates = index[drive & _round(unseen)]
         if candidates.size == 0:
             break
         nearest = _nearest(graph, int(index[position]), candidates, sensor_range)

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
-from cga.checks._distance import disc_dilation, squared_reach
+from cga.checks._distance import disc_dilation, disc_dilations, squared_reach
 from cga.model import OUTSIDE, FloorPlan
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -192,18 +192,17 @@ def items_per_m2(plan: FloorPlan) -> float:
 # -- grid metrics ----------------------------------------------------------------------
 
 
-def _geodesic(reached: np.ndarray, start: tuple[int, int], resolution: float) -> np.ndarray:
-    """Shortest 8-connected path length (m) from ``start`` to every reached cell (inf
-    elsewhere)."""
+def _geodesic(reached: np.ndarray, start: tuple[int, int], resolution: float,
+              targets: np.ndarray) -> np.ndarray:
+    """Shortest 8-connected path length (m) from ``start`` over the reached cells to
+    each of ``targets`` (flat indices of reached cells)."""
     from scipy.sparse.csgraph import dijkstra
 
     from .exploration import _grid_graph
 
     graph, index = _grid_graph(reached, resolution)
     distances = dijkstra(graph, directed=True, indices=int(index[start]))
-    out = np.full(reached.shape, np.inf)
-    out[reached] = distances[index[reached]]
-    return out
+    return np.asarray(distances[index.ravel()[targets]])
 
 
 WIDTH_STEP = 0.1
@@ -213,6 +212,13 @@ MAX_WIDTH = 6.0
 """Local widths are counted up to this (m): beyond it a space is simply open."""
 
 
+_LOWEST_BITS = np.array([(1 << n) - 1 for n in range(9)], dtype=np.uint8)
+"""The byte with its ``n`` lowest bits set, for ``n`` from 0 to 8."""
+
+_BIT_LENGTH = np.array([b.bit_length() for b in range(256)], dtype=np.uint8)
+"""The position of each byte's highest bit plus 1 (0 for 0)."""
+
+
 def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
     """The local width (thickness) of the free space at every cell: the diameter of the
     largest free disc that covers the cell, to :data:`WIDTH_STEP`.
@@ -220,23 +226,35 @@ def local_width(clearance: np.ndarray, resolution: float) -> np.ndarray:
     A disc of radius ``r`` centred on a cell whose clearance is at least ``r`` is free, so
     a cell lies in a free disc of radius ``r`` exactly when it is within ``r`` of such a
     centre: one dilation of the centres by the disc per radius (Hildebrand and
-    Rüegsegger 1997 define the same thickness), each on the bounding box of the centres
-    grown by ``r`` (no cell farther out is within ``r`` of a centre). The radii rise, so a
-    cell's last one is its largest; they are counted in small integers and turned into
-    widths once. Cells in no free disc (the obstacles) get 0.
+    Rüegsegger 1997 define the same thickness), eight radii at a time in the bit planes
+    of one byte grid (:func:`disc_dilations`), on the bounding box of the smallest
+    radius's centres grown by the largest radius (no cell farther out is within reach of
+    a centre). A cell's width is twice the largest radius whose disc covers it; the
+    radii are counted in small integers and turned into widths once. Cells in no free
+    disc (the obstacles) get 0.
     """
     radii = _radii()
     count = np.zeros(clearance.shape, dtype=np.uint8)  # radii[count - 1] the largest
     row_best, col_best = clearance.max(axis=1), clearance.max(axis=0)
-    for k, radius in enumerate(radii, start=1):
-        rows, cols = np.flatnonzero(row_best >= radius), np.flatnonzero(col_best >= radius)
-        if not rows.size:
+    best = row_best.max()
+    for first in range(0, len(radii), 8):
+        group = [radius for radius in radii[first:first + 8] if radius <= best]
+        if not group:
             break
-        grow = math.ceil(radius / resolution) + 1
+        rows, cols = np.flatnonzero(row_best >= group[0]), np.flatnonzero(col_best >= group[0])
+        reaches = [squared_reach(radius, resolution) for radius in group]
+        grow = math.isqrt(reaches[-1])
         box = (slice(max(0, int(rows[0]) - grow), int(rows[-1]) + grow + 1),
                slice(max(0, int(cols[0]) - grow), int(cols[-1]) + grow + 1))
-        near = disc_dilation(~(clearance[box] < radius), squared_reach(radius, resolution))
-        count[box][near] = k
+        # the centres of radius group[j] in bit j: the radii a cell admits are the first
+        # ones (those up to its clearance), so its bits are the lowest ones
+        part, admitted = clearance[box], np.zeros(count[box].shape, dtype=np.uint8)
+        for radius in group:
+            admitted += part >= radius
+        planes = disc_dilations(_LOWEST_BITS[admitted], reaches)
+        counts = _BIT_LENGTH + np.uint8(first)  # a byte's radii: up to its highest bit's
+        counts[0] = 0
+        np.maximum(count[box], counts[planes], out=count[box])
     return np.array([0.0] + [2 * radius for radius in radii])[count]
 
 
@@ -283,24 +301,23 @@ def grid_metrics(plan: FloorPlan, space: "DriveSpace", reach: "FloorReach",
     out["exploration_path_m"] = None
     if space.start is None or not reached[space.start]:
         return out
-    distance = _geodesic(reached, space.start, res)
+    rooms = [(mask, cells) for mask in space.room_masks.values()
+             if (cells := np.flatnonzero(mask & reached)).size]
+    # each reached room's target: its reached cell of most clearance (the first of equals)
+    targets = np.array([int(cells[np.argmax(clear.ravel()[cells])]) for _, cells in rooms],
+                       dtype=np.int64)
+    distances = _geodesic(reached, space.start, res, targets)
     ratios = []
     start_xz = np.asarray(grid.cell_to_world(*space.start))
-    for mask in space.room_masks.values():
-        cells = mask & reached
-        if not cells.any():
-            continue
-        row, col = (int(v) for v in np.unravel_index(int(np.argmax(np.where(cells, clear, -np.inf))),
-                                                     clear.shape))
-        best = (row, col)
+    for target, distance in zip(targets.tolist(), distances.tolist()):
+        row, col = divmod(target, clear.shape[1])
         straight = float(np.linalg.norm(np.subtract(grid.cell_to_world(row, col), start_xz)))
-        if straight >= MIN_TORTUOSITY_DISTANCE and np.isfinite(distance[best]):
-            ratios.append(max(1.0, float(distance[best]) / straight))
+        if straight >= MIN_TORTUOSITY_DISTANCE and math.isfinite(distance):
+            ratios.append(max(1.0, distance / straight))
     out["tortuosity"] = float(np.mean(ratios)) if ratios else None
     seen = np.zeros(grid.shape, dtype=bool)
-    for mask in space.room_masks.values():
-        if (mask & reached).any():
-            seen |= mask & free
+    for mask, _ in rooms:
+        seen |= mask & free
     from .exploration import exploration_path
 
     out["exploration_path_m"] = exploration_path(seen, grid.occupied & ~_door_leaves(space),

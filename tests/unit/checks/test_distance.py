@@ -13,7 +13,8 @@ from scipy import ndimage
 
 from cga.checks import _distance
 from cga.checks._distance import (component_labels, diamond_dilation, disc_dilation,
-                                  distance_to_false, squared_distance_to_false, squared_reach)
+                                  disc_dilations, distance_to_false, squared_distance_to_false,
+                                  squared_reach)
 
 
 def _grid(seed: int, rows: int, cols: int, density: float) -> np.ndarray:
@@ -69,6 +70,45 @@ def test_disc_dilation_is_the_distance_transform_within_reach(seed, rows, cols, 
     else:
         expected = np.zeros_like(mask)
     assert np.array_equal(disc_dilation(mask, reach), expected)
+
+
+def _within_reach(mask, reach):
+    """The cells scipy's distance transform puts within ``reach`` (cells²) of ``mask``."""
+    if not mask.any():
+        return np.zeros_like(mask)
+    return np.rint(np.square(ndimage.distance_transform_edt(~mask))) <= reach
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 40), cols=st.integers(1, 40),
+       reaches=st.lists(st.integers(-1, 700), min_size=1, max_size=8),
+       nested=st.booleans())
+def test_disc_dilations_are_one_distance_transform_per_plane(seed, rows, cols, reaches,
+                                                              nested):
+    """Bit j of disc_dilations is the cells within reaches[j] of bit plane j, for discs
+    of any sizes in any order, wider or taller than the grid, empty planes and negative
+    reaches included; ``nested`` planes (each within the one before, as the local
+    width's centres are) or independent ones. Bits past the reaches are ignored."""
+    rng = np.random.default_rng(seed)
+    if nested:
+        clearance = rng.random((rows, cols))
+        masks = [clearance >= (j + 1) / 10 for j in range(len(reaches))]
+    else:
+        masks = [rng.random((rows, cols)) < rng.choice([0.0, 0.01, 0.1, 0.5])
+                 for _ in reaches]
+    planes = rng.integers(0, 256, (rows, cols), dtype=np.uint8) >> len(reaches) << len(reaches)
+    for j, mask in enumerate(masks):
+        planes |= mask.astype(np.uint8) << j
+    out = disc_dilations(planes, reaches)
+    assert out.dtype == np.uint8 and out.shape == (rows, cols)
+    for j, (mask, reach) in enumerate(zip(masks, reaches)):
+        assert np.array_equal((out >> j) & 1 == 1, _within_reach(mask, reach))
+    assert not (out >> len(reaches)).any()
+
+
+def test_disc_dilations_take_eight_planes_at_most():
+    with pytest.raises(ValueError):
+        disc_dilations(np.zeros((2, 2), dtype=np.uint8), [1] * 9)
 
 
 @settings(max_examples=60, deadline=None)

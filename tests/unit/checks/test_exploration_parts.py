@@ -1,7 +1,8 @@
 """The exploration proxy's parts (cga.difficulty.exploration) against straightforward
-references: the coarse grids against numpy's block reductions, the sensor against the
-ray cast over every half-cell step on the bare grid, the limited goal search against a
-full Dijkstra search. All exact."""
+references: the coarse grids against numpy's block reductions, the frontier's 3 × 3
+squares against the disc dilation, the sensor against the ray cast over every half-cell
+step on the bare grid, the limited goal search against a full Dijkstra search. All
+exact."""
 
 from __future__ import annotations
 
@@ -10,7 +11,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.sparse.csgraph import dijkstra
 
-from cga.difficulty.exploration import (_coarsen, _grid_graph, _nearest, _ray_offsets,
+from cga.checks._distance import disc_dilation
+from cga.difficulty.exploration import (_coarsen, _grid_graph, _nearest, _ray_offsets, _round,
                                         _Sensor)
 
 
@@ -29,6 +31,14 @@ def _coarsen_by_blocks(mask, factor, how):
 def test_coarsen_is_the_block_reduction(seed, rows, cols, factor, density, how):
     mask = np.random.default_rng(seed).random((rows, cols)) < density
     assert np.array_equal(_coarsen(mask, factor, how), _coarsen_by_blocks(mask, factor, how))
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 30), cols=st.integers(1, 30),
+       density=st.sampled_from([0.0, 0.05, 0.3, 0.9]))
+def test_round_is_the_disc_dilation_by_two(seed, rows, cols, density):
+    mask = np.random.default_rng(seed).random((rows, cols)) < density
+    assert np.array_equal(_round(mask), disc_dilation(mask, 2))
 
 
 def _seen_by_every_step(occluder, at, reach):
