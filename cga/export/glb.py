@@ -314,7 +314,8 @@ def _material_pieces(meshes: Sequence[tuple[int, np.ndarray, np.ndarray, int]]
     before it in its slot. Per piece that is numpy's own work; on the hundred meshes of a
     house, most of a few dozen triangles, one pass over all saves the per-call overhead
     that outweighed it."""
-    sizes, counts = (np.array([m[i] for m in meshes], dtype=np.int64) for i in (0, 3))
+    sizes = np.array([size for size, _, _, _ in meshes], dtype=np.int64)
+    counts = np.array([count for _, _, _, count in meshes], dtype=np.int64)
     face_counts = [len(faces) for _, faces, _, _ in meshes]
     slot_start = np.cumsum([0, *counts])
     base = np.cumsum([0, *np.repeat(sizes, counts)])  # each slot's run of marks
@@ -486,7 +487,7 @@ class _Gltf:
         if mesh is not None:
             node["mesh"] = mesh
         offset = None if matrix is None else np.asarray(matrix, dtype=np.float64) - _IDENTITY
-        near = offset is None or float(offset.max() - offset.min()) < 1e-8  # np.ptp's
+        near = offset is None or float(offset.max() - offset.min()) < 1e-8  # np.ptp
         node["matrix"] = None if near else np.asarray(matrix, dtype=np.float64).T.ravel().tolist()
         node["extensions"] = extensions
         node["extras"] = extras

@@ -241,7 +241,8 @@ def _plain(value):
 
 
 _EXTRAS = st.recursive(
-    st.none() | st.booleans() | st.integers(-9, 9) | st.floats(allow_nan=False) | st.text(max_size=3)
+    st.none() | st.booleans() | st.integers(-9, 9) | st.floats(allow_nan=False)
+    | st.text(max_size=3)
     | st.floats(-9, 9).map(np.float32) | st.integers(-9, 9).map(np.int64)
     | st.frozensets(st.integers(0, 9), max_size=3),
     lambda inner: (st.lists(inner, max_size=3) | st.lists(inner, max_size=3).map(tuple)
