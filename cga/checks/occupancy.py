@@ -287,7 +287,10 @@ def _convex_shadows(groups: Sequence[Sequence[MeshArrays]], y0: float,
 
     Each part's points go to GEOS as a line string, not a multipoint: a hull is made
     of the distinct points in their order either way, and a line string is made
-    without a point geometry per point (a part with a single point has it twice)."""
+    without a point geometry per point (a part with a single point has it twice).
+    A group one of whose hulls is an axis-aligned rectangle holding all the others (a
+    table top over its legs) is that rectangle, without a union: the same region,
+    which is all a grid's cells depend on when it is rectilinear."""
     parts = [part for group in groups for part in group]
     group_of = np.repeat(np.arange(len(groups)), [len(g) for g in groups])
     points, owner = _band_points(parts, y0, y1)
@@ -297,7 +300,33 @@ def _convex_shadows(groups: Sequence[Sequence[MeshArrays]], y0: float,
                                                     indices=np.repeat(owner, twice)))
     flat = shapely.get_type_id(hulls) != shapely.GeometryType.POLYGON
     hulls[flat] = shapely.buffer(hulls[flat], _SHEET)
-    return list(union_by_owner(hulls, group_of[kept], len(groups)))
+    rows = group_of[kept]
+    whole = _covering_boxes(hulls, rows, len(groups))
+    rest = whole[rows] < 0
+    shadows = union_by_owner(hulls[rest], rows[rest], len(groups))
+    shadows[whole >= 0] = hulls[whole[whole >= 0]]
+    return list(shadows)
+
+
+def _covering_boxes(hulls: np.ndarray, owner: np.ndarray, count: int) -> np.ndarray:
+    """For each owner ``0 … count − 1`` of ``hulls`` (grouped by owner), the index of a
+    hull that is an axis-aligned rectangle as large as the bounding box of all its
+    owner's hulls (so it holds them all), or −1."""
+    xz, ring = shapely.get_coordinates(hulls, return_index=True)
+    slanted = (ring[1:] == ring[:-1]) & np.all(np.diff(xz, axis=0) != 0, axis=1)
+    box = ((shapely.get_num_coordinates(hulls) == 5)
+           & (np.bincount(ring[1:][slanted], minlength=len(hulls)) == 0))
+    bounds = shapely.bounds(hulls)
+    low = np.full((count, 2), np.inf)
+    high = np.full((count, 2), -np.inf)
+    np.minimum.at(low, owner, bounds[:, :2])
+    np.maximum.at(high, owner, bounds[:, 2:])
+    covers = box & np.all(bounds == np.hstack([low, high])[owner], axis=1)
+    index = np.flatnonzero(covers)
+    groups, first = np.unique(owner[index], return_index=True)  # the first, where several
+    whole = np.full(count, -1)
+    whole[groups] = index[first]
+    return whole
 
 
 def _sheet_footprint(mesh: MeshLike, y0: float, y1: float) -> BaseGeometry:

@@ -10,6 +10,7 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from cga.checks._raster import polygon_patches
 from cga.checks._solids import as_mesh
 from cga.checks.occupancy import _SHEET, _band_points, _convex_shadows
 from cga.scene import MeshArrays
@@ -57,9 +58,13 @@ _value = st.integers(-8, 8).map(lambda n: n * 0.125)
 
 @st.composite
 def _part(draw):
-    """A convex solid: the hull of a few points (some on the band's planes), or a flat
-    or a single-point part the band only touches."""
-    points = draw(st.lists(st.tuples(_value, _value, _value), min_size=4, max_size=9))
+    """A convex solid: the hull of a few points (some on the band's planes), an
+    axis-aligned box, or a flat or a single-point part the band only touches."""
+    if draw(st.booleans()):  # a box: its shadow a rectangle, which may hold the others'
+        lo, hi = draw(st.tuples(_value, _value, _value)), draw(st.tuples(_value, _value, _value))
+        points = [(a, b, c) for a in (lo[0], hi[0]) for b in (lo[1], hi[1]) for c in (lo[2], hi[2])]
+    else:
+        points = draw(st.lists(st.tuples(_value, _value, _value), min_size=4, max_size=9))
     hull = manifold3d.Manifold.hull_points(np.array(points, dtype=float))
     if hull.is_empty():
         corner = np.array(points[:1], dtype=float)
@@ -78,8 +83,22 @@ def test_convex_shadows_are_the_previous_ones(groups, band):
     want = _reference(groups, y0, y1)
     assert len(got) == len(want)
     for a, b in zip(got, want):
-        assert a.geom_type == b.geom_type
-        assert np.array_equal(shapely.get_coordinates(a), shapely.get_coordinates(b))
+        if np.array_equal(shapely.get_coordinates(a), shapely.get_coordinates(b)):
+            assert a.geom_type == b.geom_type
+            continue
+        # a rectangle holding the group's other shadows stands for their union: the same
+        # region, and (being rectilinear) the same cells on any grid
+        x0, z0, x1, z1 = a.bounds
+        assert shapely.equals(a, shapely.box(x0, z0, x1, z1)) and shapely.equals(a, b)
+        for origin in ((0.0, 0.0), (0.01, -0.02)):
+            assert _cells(a, origin) == _cells(b, origin)
+
+
+def _cells(shadow, origin):
+    grid = np.zeros((80, 80), dtype=bool)
+    for r0, r1, c0, c1, patch in polygon_patches(grid.shape, [shadow], *origin, 0.05)[0]:
+        grid[r0:r1, c0:c1] |= patch
+    return grid.tobytes()
 
 
 def test_band_points_of_no_parts():
@@ -96,3 +115,18 @@ def test_a_part_touching_the_band_at_one_point():
     assert len(points) == 1
     (got,), (want,) = _convex_shadows([[part]], 0.5, 1.0), _reference([[part]], 0.5, 1.0)
     assert np.array_equal(shapely.get_coordinates(got), shapely.get_coordinates(want))
+
+
+def test_a_table_is_its_top():
+    """A top over four legs: the top's rectangle, the region the union of all five has."""
+    def box(x0, y0, z0, x1, y1, z1):
+        mesh = as_mesh(manifold3d.Manifold.cube([x1 - x0, y1 - y0, z1 - z0]).translate(
+            [x0, y0, z0]))
+        return MeshArrays(mesh.vertices, mesh.faces)
+
+    legs = [box(x, 0.0, z, x + 0.05, 0.7, z + 0.05) for x in (0.0, 0.95) for z in (0.0, 0.55)]
+    parts = [box(0.0, 0.7, 0.0, 1.0, 0.75, 0.6), *legs]
+    (got,), (want,) = _convex_shadows([parts], 0.05, 1.2), _reference([parts], 0.05, 1.2)
+    assert shapely.equals(got, want)
+    assert shapely.get_num_coordinates(got) == 5
+    assert _cells(got, (0.0, 0.0)) == _cells(want, (0.0, 0.0))
