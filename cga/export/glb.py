@@ -720,6 +720,9 @@ def _parent(gltf: _Gltf, path: str, root: str, groups: Mapping[str, dict[str, An
             made: set[str]) -> str:
     """The group node above ``path``, made (with its own ancestors) when missing; ``made``
     holds the groups and nodes made so far."""
+    above = path.rpartition("/")[0]
+    if above and above in made:  # the common case; a made group's ancestors are made
+        return above
     parent = root
     parts = path.split("/")
     for depth in range(1, len(parts)):
