@@ -12,8 +12,9 @@ from hypothesis import strategies as st
 from cga.checks import check_navigability
 from cga.difficulty import measure_floor
 from cga.difficulty.exploration import exploration_path
-from cga.difficulty.metrics import (MAX_WIDTH, WIDTH_STEP, corridor_length, cycle_rank,
-                                    dead_ends, doors_per_room, items_per_m2, local_width)
+from cga.difficulty.metrics import (MAX_WIDTH, WIDTH_STEP, _radii, corridor_length,
+                                    cycle_rank, dead_ends, doors_per_room, items_per_m2,
+                                    local_width)
 from cga.model import FurnitureItem
 
 T = 0.2  # FloorSettings' default wall thickness
@@ -181,12 +182,13 @@ def _local_width_by_definition(clearance, resolution):
     return width
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1), rows=st.integers(3, 90), cols=st.integers(3, 90),
        boxes=st.integers(0, 6), resolution=st.sampled_from([0.05, 0.1, 0.04]))
 def test_local_width_is_the_per_radius_definition(seed, rows, cols, boxes, resolution):
-    """local_width (disc dilations cropped to each radius's centres) gives the very
-    numbers of the definition on rooms with random furniture."""
+    """local_width (eight radii per pass in the bit planes of a byte grid, cropped to
+    the centres) gives the very numbers of the definition on rooms with random
+    furniture."""
     from scipy import ndimage
 
     rng = np.random.default_rng(seed)
@@ -200,6 +202,21 @@ def test_local_width_is_the_per_radius_definition(seed, rows, cols, boxes, resol
                           _local_width_by_definition(clearance, resolution))
 
 
+
+
+def test_local_width_of_a_hall_wider_than_the_largest_disc():
+    """A 9.5 m × 10.5 m hall with a pillar: every radius up to :data:`MAX_WIDTH`'s half
+    admits centres (all eight-radius passes, the last one short), and the widest discs
+    stop at 6 m."""
+    from scipy import ndimage
+
+    blocked = np.zeros((190, 210), dtype=bool)
+    blocked[[0, -1], :] = blocked[:, [0, -1]] = True
+    blocked[30:36, 150:158] = True
+    clearance = ndimage.distance_transform_edt(~blocked) * 0.05 - 0.025
+    width = local_width(clearance, 0.05)
+    assert width.max() == 2 * max(r for r in _radii())
+    assert np.array_equal(width, _local_width_by_definition(clearance, 0.05))
 
 @settings(max_examples=30, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 12), cols=st.integers(1, 12))
