@@ -50,19 +50,19 @@ def polygon_patches(shape: tuple[int, ...], geometries: Sequence[BaseGeometry], 
     """For each geometry (plan x, z), the cells of a grid of ``shape`` (top edge at
     ``z_min``, left edge at ``x_min``) that it covers or crosses: one patch per polygon,
     its bounding box of cells, in the polygons' order."""
-    polygons = [p for g in geometries for p in polygons_of(g)]
-    owner = np.repeat(np.arange(len(geometries)), [len(polygons_of(g)) for g in geometries])
+    each = [polygons_of(g) for g in geometries]
+    polygons = [p for group in each for p in group]
+    owner = np.repeat(np.arange(len(geometries)), [len(group) for group in each]).tolist()
     out: list[list[Patch]] = [[] for _ in geometries]
     if not polygons:
         return out
     rings = _Rings(np.array(polygons, dtype=object), shape, x_min, z_min, resolution)
     cells = dict(zip(rings.fast.tolist(), _scanline_cells(rings)))
     for k in np.flatnonzero(rings.drawn).tolist():
-        box = rings.box(k)
         patch = cells.get(k)
         if patch is None:
             patch = _pillow_cells(polygons[k], rings, k, x_min, z_min, resolution)
-        out[owner[k]].append((*box, patch))
+        out[owner[k]].append((*rings.box(k), patch))
     return out
 
 
