@@ -1,8 +1,8 @@
 """The plan exporter's shortcuts give the bits of the plain computations they replace.
 
-Each test keeps the plain way (numpy, ``shapely.affinity``, one ``buffer`` per shape, a
-cap at both ends of every stroke) and compares exactly: coordinates bit for bit,
-geometries as WKB, pages as PNG bytes.
+Each test keeps the plain way (numpy, ``shapely.affinity``, one ``buffer`` per shape,
+one point at a time, a cap at both ends of every stroke, a turned label drawn each time)
+and compares exactly: coordinates bit for bit, geometries as WKB, pages as PNG bytes.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from shapely.ops import unary_union
 
 from cga.export import drawing
 from cga.export.drawing import Area, Drawing, Polyline, Style, Text, render_png
-from cga.export.plan import _corners, _obstacles, _Paper, _scale_x
+from cga.export.plan import _HATCHING, _corners, _hatch, _obstacles, _Paper, _scale_x
 from cga.model import OUTSIDE, Wall
 
 DEMOS = Path(__file__).resolve().parents[3] / "demos"
@@ -113,3 +113,31 @@ def test_paper_points_in_one_pass_are_the_points_one_by_one(points, corner, scal
     array = np.array(points, dtype=float).reshape(-1, 2)
     expected = [paper.point(x, z) for x, z in points]
     assert np.array(paper.points(array)).tobytes() == np.array(expected).tobytes()
+
+
+def _hatch_one_part_at_a_time(paper, region):
+    """The hatch lines as :func:`_hatch` read them before: part by part, point by point."""
+    min_x, min_z, max_x, max_z = region.bounds
+    spacing = max(0.35, 6.0 / paper.scale)
+    count = int(((max_x - min_x) + (max_z - min_z)) / spacing) + 1
+    lines = shapely.linestrings([[(c - min_z + 1, min_z - 1), (c - max_z - 1, max_z + 1)]
+                                 for c in (min_x + min_z + k * spacing for k in range(count + 1))])
+    return [Polyline(tuple(paper.point(x, z) for x, z in part.coords), _HATCHING,
+                     css_class="circulation")
+            for piece in shapely.intersection(lines, region)
+            for part in getattr(piece, "geoms", [piece])
+            if part.geom_type == "LineString" and not part.is_empty]
+
+
+@pytest.mark.parametrize("region", [
+    Polygon([(0.3, 0.2), (4.1, 0.2), (4.1, 1.4), (1.5, 1.4), (1.5, 3.9), (0.3, 3.9)]),  # an L
+    Polygon([(0, 0), (3.5, 0), (3.5, 2.8), (0, 2.8)],  # a hall around a stair core
+            [[(1.0, 0.7), (2.4, 0.7), (2.4, 2.1), (1.0, 2.1)]]),
+    Polygon([(0, 0), (0.7, 0), (0.7, 0.7), (1.4, 0.7), (1.4, 0), (2.1, 0), (2.1, 1.4),
+             (0, 1.4)]),  # corners on hatch lines: grazing points, not lines
+])
+def test_hatch_lines_read_in_one_pass_are_the_lines_read_one_by_one(region):
+    paper = _Paper(-0.5, -0.5, 40.0, 48.0, 80.0)
+    page = Drawing(width=400, height=300, title="hatch")
+    _hatch(page, paper, region)
+    assert page.layers["rooms"] == _hatch_one_part_at_a_time(paper, region)
