@@ -106,9 +106,13 @@ class DoorLeaf:
         """4×4 world transform of the hinge frame with the leaf open by ``angle``
         (default: the build's angle)."""
         turn = self.angle if angle is None else angle
-        x = np.array([self.along[0], 0.0, self.along[1]])
-        y = np.array([0.0, 1.0, 0.0])
-        closed = np.column_stack([x, y, np.cross(x, y)])
+        # columns x = (ax, 0, az), y = (0, 1, 0) and z = x × y, whose components are
+        # written as np.cross works them out (a1·b2 − a2·b1, ...), zeros and all, so the
+        # signs of zero are its signs too; np.cross costs more than the rest of the frame
+        ax, az = self.along
+        closed = np.array([[ax, 0.0, 0.0 * 0.0 - az * 1.0],
+                           [0.0, 1.0, az * 0.0 - ax * 0.0],
+                           [az, 0.0, ax * 1.0 - 0.0 * 0.0]])
         matrix = np.eye(4)
         matrix[:3, :3] = rotation_about_y(turn * self.axis[1]) @ closed
         matrix[:3, 3] = self.hinge
@@ -156,18 +160,22 @@ def door_leaf(plan: FloorPlan, door: Door, thickness: float) -> DoorLeaf:
         raise ValueError(f"door {door.id} on floor {plan.index}: a {door.width:.3f} m × "
                          f"{door.height:.3f} m opening takes no {thickness:.3f} m leaf")
     wall = plan.wall(door.wall)
-    along = wall.direction if door.hinge == "start" else -wall.direction
-    normal = wall.normal_into(door.swing_room)
-    face = np.asarray(door.position) + normal * face_offset(plan, door.swing_room, door.position)
-    hinge = face - along * door.width / 2
+    # plan vectors as plain floats, worked out component by component as the vector
+    # formulas (face = position + normal · offset, hinge = face − along · width / 2) do
+    ux, uz = wall.unit()
+    ax, az = (ux, uz) if door.hinge == "start" else (-ux, -uz)
+    nx, nz = (float(v) for v in wall.normal_into(door.swing_room))
+    offset = face_offset(plan, door.swing_room, door.position)
+    fx, fz = door.position[0] + nx * offset, door.position[1] + nz * offset
+    hx, hz = fx - ax * door.width / 2, fz - az * door.width / 2
     # the axis whose positive turn takes `along` towards `normal` is along × normal
     # (both horizontal, so it is vertical)
-    axis_y = float(np.sign(along[1] * normal[0] - along[0] * normal[1]))
+    axis_y = float(np.sign(az * nx - ax * nz))
     return DoorLeaf(
         floor=plan.index, door=door.id, rooms=door.rooms, swing_room=door.swing_room,
         state=door.state, angle=float(door.angle),
-        hinge=(float(hinge[0]), float(plan.floor_y), float(hinge[1])),
-        along=(float(along[0]), float(along[1])), axis=(0.0, axis_y, 0.0),
+        hinge=(float(hx), float(plan.floor_y), float(hz)),
+        along=(float(ax), float(az)), axis=(0.0, axis_y, 0.0),
         size=(float(width), float(height), float(thickness)), gaps=(side, bottom))
 
 

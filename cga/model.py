@@ -26,8 +26,7 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
-from shapely.geometry import LineString, Point, Polygon, box
-from shapely import affinity
+from shapely.geometry import LineString, Point, Polygon
 from shapely.geometry.polygon import orient
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -113,6 +112,7 @@ class Wall:
 
     @property
     def direction(self) -> np.ndarray:
+        """The unit vector from ``start`` to ``end`` (:meth:`unit` as an array)."""
         return np.array(self.unit())
 
     def unit(self) -> tuple[float, float]:
@@ -130,8 +130,12 @@ class Wall:
     @property
     def normal(self) -> np.ndarray:
         """The unit normal to the left of ``start``→``end``: it points into ``rooms[0]``."""
-        d = self.direction
-        return np.array([-d[1], d[0]])
+        return np.array(self._left())
+
+    def _left(self) -> tuple[float, float]:
+        """:attr:`normal` as plain floats (the unit vector turned a quarter left)."""
+        ux, uz = self.unit()
+        return (-uz, ux)
 
     def normal_into(self, room: int) -> np.ndarray:
         """The unit normal pointing from the wall line into ``room`` (one of
@@ -142,7 +146,8 @@ class Wall:
         ValueError
             ``room`` is not on either side of this wall.
         """
-        return self.normal if self._on_left(room) else -self.normal
+        nx, nz = self._left()
+        return np.array((nx, nz) if self._on_left(room) else (-nx, -nz))
 
     def _on_left(self, room: int) -> bool:
         if room not in self.rooms:
@@ -170,12 +175,17 @@ class Wall:
 
     def band_corners(self, before: float = 0.0, after: float = 0.0) -> np.ndarray:
         """The 4×2 corners of the wall's solid strip (:meth:`band` across), reaching
-        ``before`` metres past ``start`` and ``after`` metres past ``end``."""
-        d, n = self.direction, self.normal
-        a = np.asarray(self.start) - d * before
-        b = np.asarray(self.end) + d * after
+        ``before`` metres past ``start`` and ``after`` metres past ``end``.
+
+        Worked out in plain floats, component by component in the order the vector
+        formula ``a + n * lo`` (``a = start - d * before``, ...) takes, so the corners
+        have the same bits as with numpy at a fraction of the cost."""
+        (dx, dz), (nx, nz) = self.unit(), self._left()
+        ax, az = self.start[0] - dx * before, self.start[1] - dz * before
+        bx, bz = self.end[0] + dx * after, self.end[1] + dz * after
         lo, hi = self.band()
-        return np.array([a + n * lo, b + n * lo, b + n * hi, a + n * hi])
+        return np.array([(ax + nx * lo, az + nz * lo), (bx + nx * lo, bz + nz * lo),
+                         (bx + nx * hi, bz + nz * hi), (ax + nx * hi, az + nz * hi)])
 
     def point_at(self, distance: float) -> tuple[float, float]:
         """The point ``distance`` metres from ``start`` along the segment."""
@@ -275,23 +285,31 @@ class Window:
     sill: float
 
 
+def _cos_sin(quarter_turns: int, yaw: float) -> tuple[float, float]:
+    """Cosine and sine of the turn :func:`rotation_matrix` makes: integers when ``yaw`` is
+    0 (so the matrix's ``-s`` is ``0.0``, never ``-0.0``)."""
+    if yaw == 0.0:
+        return [(1, 0), (0, 1), (-1, 0), (0, -1)][quarter_turns % 4]
+    angle = (quarter_turns % 4) * math.pi / 2 + yaw
+    return math.cos(angle), math.sin(angle)
+
+
 def rotation_matrix(quarter_turns: int, yaw: float = 0.0) -> np.ndarray:
     """3×3 rotation about +y by ``quarter_turns`` × 90° plus ``yaw`` radians
     (right-handed); exact integers when ``yaw`` is 0."""
-    c: float
-    s: float
-    if yaw == 0.0:
-        c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][quarter_turns % 4]
-    else:
-        angle = (quarter_turns % 4) * math.pi / 2 + yaw
-        c, s = math.cos(angle), math.sin(angle)
+    c, s = _cos_sin(quarter_turns, yaw)
     return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]], dtype=float)
 
 
 def front_vector(quarter_turns: int, yaw: float = 0.0) -> tuple[float, float]:
-    """The item's front direction in plan ``(x, z)`` for a rotation (0 → (0, −1))."""
-    v = rotation_matrix(quarter_turns, yaw) @ np.array([0.0, 0.0, -1.0])
-    return (float(v[0]), float(v[2]))
+    """The item's front direction in plan ``(x, z)`` for a rotation (0 → (0, −1)).
+
+    This is :func:`rotation_matrix` applied to ``(0, 0, −1)``: each component sums a
+    ``±0`` product, an exact ``+0`` and ``∓sin`` or ``−cos``, which any summation order
+    rounds to ``0.0 − sin`` and ``0.0 − cos`` (a zero comes out ``+0``), so it is written
+    that way, without building the matrix."""
+    c, s = _cos_sin(quarter_turns, yaw)
+    return (0.0 - s, 0.0 - c)
 
 
 @dataclass(frozen=True)
@@ -328,13 +346,34 @@ class FurnitureItem:
         return (self.rotation % 4) * math.pi / 2 + self.yaw
 
     def footprint(self) -> Polygon:
-        """The item's rectangle in plan, rotated and placed."""
+        """The item's rectangle in plan, rotated and placed.
+
+        The corners are those of ``box`` turned and moved by ``shapely.affinity``
+        (``rotate`` by the quarter turns, by ``yaw`` when it is not 0, then ``translate``),
+        worked out on four points in plain floats with the same formulas in the same order,
+        so the coordinates have the same bits: the plans ask for thousands of these, and
+        each affinity call costs a geometry round trip."""
         w, _, d = self.size
-        rect = box(-w / 2, -d / 2, w / 2, d / 2)
-        rect = affinity.rotate(rect, -90 * (self.rotation % 4), origin=(0, 0))
+        corners = [(w / 2, -d / 2), (w / 2, d / 2), (-w / 2, d / 2), (-w / 2, -d / 2)]
+        corners = _rotated(corners, -90 * (self.rotation % 4) * math.pi / 180.0)
         if self.yaw:
-            rect = affinity.rotate(rect, -self.yaw, origin=(0, 0), use_radians=True)
-        return affinity.translate(rect, *self.position)
+            corners = _rotated(corners, -self.yaw)
+        x0, z0 = self.position
+        return Polygon([(1.0 * x + 0.0 * z + x0, 0.0 * x + 1.0 * z + z0) for x, z in corners])
+
+
+def _rotated(points: list[tuple[float, float]], angle: float) -> list[tuple[float, float]]:
+    """``points`` turned by ``angle`` radians about the origin, exactly as
+    ``shapely.affinity.rotate(geom, angle, origin=(0, 0), use_radians=True)`` turns a
+    geometry's coordinates: a sine or cosine under 2.5e-16 counts as 0, and the matrix's
+    offsets (0 for this origin) are added last."""
+    cosp, sinp = math.cos(angle), math.sin(angle)
+    if abs(cosp) < 2.5e-16:
+        cosp = 0.0
+    if abs(sinp) < 2.5e-16:
+        sinp = 0.0
+    xoff, zoff = 0.0 - 0.0 * cosp + 0.0 * sinp, 0.0 - 0.0 * sinp - 0.0 * cosp
+    return [(cosp * x + -sinp * z + xoff, sinp * x + cosp * z + zoff) for x, z in points]
 
 
 @dataclass(frozen=True)
