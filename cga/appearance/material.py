@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
 
 import numpy as np
 
@@ -60,11 +62,35 @@ class Material:
         digest = hashlib.blake2b(repr((surface, values)).encode(), digest_size=3).hexdigest()
         return cls(f"{row}_{digest}", row, surface, color, values[1], values[2], values[3])
 
+    def __post_init__(self) -> None:
+        # Materials are dict keys on the exporters' hot paths (about 1,500 lookups a
+        # house), so the hash dataclass would work out on each lookup (that of the tuple
+        # of fields: the same value, and equality stays the fields') is kept.
+        object.__setattr__(self, "_hash", hash((self.name, self.row, self.surface, self.color,
+                                                self.roughness, self.metallic, self.alpha)))
+
+    def __hash__(self) -> int:
+        return self._hash  # type: ignore[attr-defined]
+
+    def __getstate__(self) -> dict[str, Any]:
+        # string hashes differ between processes: a pickled material hashes afresh
+        return {k: v for k, v in self.__dict__.items() if k != "_hash"}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self.__post_init__()
+
     @property
     def transparent(self) -> bool:
         return self.alpha < 1.0
 
-    def linear_rgba(self) -> list[float]:
-        """glTF ``baseColorFactor``: linear RGB and alpha."""
+    @cached_property
+    def _linear_rgb(self) -> tuple[float, float, float]:
+        """The colour in linear light, worked out once per material (numpy's overhead on
+        three values costs more than the conversion; glTF asks once per use)."""
         r, g, b = (float(v) for v in srgb_to_linear(np.asarray(self.color)))
-        return [round(r, 6), round(g, 6), round(b, 6), self.alpha]
+        return (round(r, 6), round(g, 6), round(b, 6))
+
+    def linear_rgba(self) -> list[float]:
+        """glTF ``baseColorFactor``: linear RGB and alpha (a new list on each call)."""
+        return [*self._linear_rgb, self.alpha]
