@@ -14,6 +14,9 @@ children (placed relative to their parent) and non-colliding items (rugs).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from functools import reduce
+from operator import add
 
 import numpy as np
 import shapely
@@ -183,51 +186,71 @@ def _rounds_few(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon: 
     non-contiguous axis sequentially), an item's own term is ``+0.0``, and square roots,
     maxima and minima are exact, so the positions are the same floats
     (``tests/unit/furniture/test_furniture_steering.py`` compares the two).
+
+    What numpy works out but never uses is left out: the push between two items is
+    worked out once per pair (the other item's is its negation, exactly, unless the two
+    coincide and each takes its own fallback direction), pairs of items that both stay
+    put are skipped, and so is the step of an item that stays put.
     """
     cohesion, separation, step_limit = weights
     n = len(p)
     xs, zs = p[:, 0].tolist(), p[:, 1].tolist()
-    r, fall, take_ok = radii.tolist(), fallback.tolist(), movable.tolist()
+    r, fall = radii.tolist(), fallback.tolist()
+    movers = np.flatnonzero(movable).tolist()
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n) if movable[i] or movable[j]]
     (lox, loz), (hix, hiz) = lo.T.tolist(), hi.T.tolist()
+    inside = _inside(polygon)
     for _ in range(iterations):
-        sum_x, sum_z = xs[0], zs[0]
-        for k in range(1, n):
-            sum_x += xs[k]
-            sum_z += zs[k]
-        new_x, new_z = [], []
-        for i in range(n):
-            push_x = push_z = 0.0
-            for j in range(n):
-                if j == i:
-                    term_x = term_z = 0.0
-                else:
-                    dx, dz = xs[i] - xs[j], zs[i] - zs[j]
-                    distance = math.sqrt(dx * dx + dz * dz)
-                    if distance > 1e-9:
-                        ux, uz = dx / distance, dz / distance
-                    else:
-                        ux, uz = fall[i]
-                    overlap = r[i] + r[j] - distance
-                    overlap = overlap if overlap >= 0.0 else 0.0
-                    term_x, term_z = ux * overlap, uz * overlap
-                if j == 0:
-                    push_x, push_z = term_x, term_z
-                else:
-                    push_x += term_x
-                    push_z += term_z
-            vx = cohesion * ((sum_x - xs[i]) / (n - 1) - xs[i]) + separation * push_x
-            vz = cohesion * ((sum_z - zs[i]) / (n - 1) - zs[i]) + separation * push_z
+        sum_x, sum_z = reduce(add, xs), reduce(add, zs)
+        push_x = [[0.0] * n for _ in range(n)]  # per item, the term of each item
+        push_z = [[0.0] * n for _ in range(n)]
+        for i, j in pairs:
+            dx, dz = xs[i] - xs[j], zs[i] - zs[j]
+            distance = math.sqrt(dx * dx + dz * dz)
+            overlap = r[i] + r[j] - distance
+            overlap = overlap if overlap >= 0.0 else 0.0
+            if distance > 1e-9:
+                term_x, term_z = dx / distance * overlap, dz / distance * overlap
+                push_x[i][j], push_z[i][j] = term_x, term_z
+                push_x[j][i], push_z[j][i] = -term_x, -term_z
+            else:
+                push_x[i][j], push_z[i][j] = fall[i][0] * overlap, fall[i][1] * overlap
+                push_x[j][i], push_z[j][i] = fall[j][0] * overlap, fall[j][1] * overlap
+        steps = []
+        for i in movers:
+            vx = (cohesion * ((sum_x - xs[i]) / (n - 1) - xs[i])
+                  + separation * reduce(add, push_x[i]))
+            vz = (cohesion * ((sum_z - zs[i]) / (n - 1) - zs[i])
+                  + separation * reduce(add, push_z[i]))
             speed = math.sqrt(vx * vx + vz * vz)
             scale = step_limit / (speed if speed >= 1e-12 else 1e-12)
             scale = 1.0 if 1.0 <= scale else scale
             x, z = xs[i] + vx * scale, zs[i] + vz * scale
             x, z = (x if x >= lox[i] else lox[i]), (z if z >= loz[i] else loz[i])
-            new_x.append(x if x <= hix[i] else hix[i])
-            new_z.append(z if z <= hiz[i] else hiz[i])
-        inside = shapely.contains_xy(polygon, new_x, new_z).tolist()
-        take = [ok and within for ok, within in zip(take_ok, inside)]
-        if not any(t and (xs[i] != new_x[i] or zs[i] != new_z[i]) for i, t in enumerate(take)):
+            steps.append((i, x if x <= hix[i] else hix[i], z if z <= hiz[i] else hiz[i]))
+        taken = [step for step, within in zip(steps, inside(steps)) if within]
+        if not any(xs[i] != x or zs[i] != z for i, x, z in taken):
             break  # a fixed point: every further round would give the same positions
-        xs = [x if t else old for x, old, t in zip(new_x, xs, take)]
-        zs = [z if t else old for z, old, t in zip(new_z, zs, take)]
+        for i, x, z in taken:
+            xs[i], zs[i] = x, z
     return np.column_stack([xs, zs])
+
+
+_Steps = list[tuple[int, float, float]]
+"""``(item, x, z)`` of the steps of one round."""
+
+
+def _inside(polygon: Polygon) -> Callable[[_Steps], list[bool]]:
+    """A test of which steps end in the interior of ``polygon``: for a room that is the
+    box of its bounds (most rooms), a comparison with them, which is what
+    :func:`shapely.contains_xy` answers (a point on the boundary is not in the interior)
+    without its cost per call."""
+    minx, minz, maxx, maxz = polygon.bounds
+    corners = {(minx, minz), (maxx, minz), (maxx, maxz), (minx, maxz)}
+    ring = polygon.exterior.coords[:]
+    # a ring through the four corners, each edge along a side, is the outline of the box
+    if (not polygon.interiors and len(ring) == 5 and set(ring) == corners
+            and all(a[0] == b[0] or a[1] == b[1] for a, b in zip(ring, ring[1:]))):
+        return lambda steps: [minx < x < maxx and minz < z < maxz for _, x, z in steps]
+    return lambda steps: shapely.contains_xy(polygon, [x for _, x, _ in steps],
+                                             [z for _, _, z in steps]).tolist()

@@ -7,8 +7,9 @@ import shapely
 from hypothesis import given, settings, strategies as st
 from shapely.geometry import Polygon, box
 
-from cga.operations.furniture.steering import (_GOLDEN_ANGLE, _centre_bounds, _rounds_few,
-                                               _rounds_many, random_start, separation_steering)
+from cga.operations.furniture.steering import (_GOLDEN_ANGLE, _centre_bounds, _inside,
+                                               _rounds_few, _rounds_many, random_start,
+                                               separation_steering)
 
 L_ROOM = Polygon([(0, 0), (6, 0), (6, 2), (2, 2), (2, 5), (0, 5)])
 
@@ -157,3 +158,20 @@ def test_few_items_give_the_floats_numpy_gives(n, seed, iterations, room, coinci
     few = _rounds_few(start.copy(), *args)
     many = _rounds_many(start.copy(), *args)
     assert few.tobytes() == many.tobytes()
+
+
+@settings(max_examples=200, deadline=None)
+@given(room=st.sampled_from([box(0, 0, 6, 5), box(-1.3, 0.7, 0.1, 2.9), L_ROOM,
+                             Polygon([(0, 0), (6, 0), (6, 5), (0, 5), (0, 2)]),
+                             box(0, 0, 6, 5).difference(box(2, 2, 3, 3))]),
+       picks=st.lists(st.tuples(st.integers(0, 4), st.integers(0, 4),
+                                st.floats(-2, 7), st.floats(-2, 7)), min_size=1, max_size=12))
+def test_the_inside_test_answers_as_contains_xy(room, picks):
+    """Points on the outline, at the corners and anywhere else: the bounds comparison of a
+    box room gives what shapely gives, as does the test of any other room."""
+    minx, minz, maxx, maxz = room.bounds
+    xs, zs = (minx, (minx + maxx) / 2, maxx), (minz, (minz + maxz) / 2, maxz)
+    steps = [(k, xs[a] if a < 3 else x, zs[b] if b < 3 else z)
+             for k, (a, b, x, z) in enumerate(picks)]
+    want = shapely.contains_xy(room, [x for _, x, _ in steps], [z for _, _, z in steps])
+    assert _inside(room)(steps) == want.tolist()
