@@ -60,6 +60,11 @@ def rotation_about_y(angle: float) -> np.ndarray:
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
+_CORNER_SIGNS = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)])
+"""The 8 corners of a box about its centre, in half extents (made once, not per call)."""
+_CORNER_SIGNS.setflags(write=False)
+
+
 @dataclass(frozen=True)
 class DoorLeaf:
     """A door leaf and its hinge, in world coordinates (metres, y up).
@@ -121,8 +126,7 @@ class DoorLeaf:
     def corners(self, angle: float | None = None) -> np.ndarray:
         """The 8 world corners of the leaf's box open by ``angle``."""
         centre, extents = self.box()
-        signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)])
-        local = centre + signs * extents / 2
+        local = centre + _CORNER_SIGNS * extents / 2
         matrix = self.frame(angle)
         return local @ matrix[:3, :3].T + matrix[:3, 3]
 

@@ -120,3 +120,16 @@ def test_door_frame_matches_np_cross(along, axis, hinge, angle):
     leaf = DoorLeaf(0, 1, (1, 2), 1, "ajar", 0.3, hinge, along, (0.0, axis, 0.0),
                     (0.8, 2.0, 0.04))
     assert _bits(leaf.frame(angle)) == _bits(_old_frame(leaf, angle))
+
+
+@settings(max_examples=100, deadline=None)
+@given(along=UNITS, axis=st.sampled_from([1.0, -1.0]), hinge=st.tuples(COORDS, COORDS, COORDS),
+       angle=st.one_of(st.none(), st.floats(0.0, math.pi)))
+def test_door_corners_match_the_old_formula(along, axis, hinge, angle):
+    leaf = DoorLeaf(0, 1, (1, 2), 1, "ajar", 0.3, hinge, along, (0.0, axis, 0.0),
+                    (0.8, 2.0, 0.04))
+    centre, extents = leaf.box()
+    signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)])
+    matrix = _old_frame(leaf, angle)
+    old = (centre + signs * extents / 2) @ matrix[:3, :3].T + matrix[:3, 3]
+    assert _bits(leaf.corners(angle)) == _bits(old)
