@@ -46,7 +46,7 @@ from .layout import ItemSpec, Layout, Pose
 from .passage import PASSAGE_WIDTH, Passage
 from .placement import Edge, Placer, room_edges
 from .rules import FurnitureRules
-from .steering import random_start, separation_steering
+from .steering import Flock
 from .variation import jittered_size
 
 __all__ = ["CROWDING", "PATIENCE", "RoomSite", "RoomResult", "furnish_room", "furnish_plan"]
@@ -150,26 +150,40 @@ def _with_copies(site: RoomSite, specs: Sequence[ItemSpec]) -> tuple[list[ItemSp
     return out, _Copies(families, extra)
 
 
-def _starts(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
-            iterations: int, groups: _Copies) -> dict[str, tuple[float, float]]:
+_Movers = tuple[list[str], Flock]
+"""The names of the items steering spreads and their :class:`.steering.Flock`."""
+
+
+def _movers(site: RoomSite, specs: Sequence[ItemSpec], groups: _Copies) -> _Movers | None:
+    """The items that get steered start positions (None: none), made once per room: every
+    attempt starts the same items afresh."""
     movers = [s for s in specs if s.rule.pair_with is None and not s.rule.non_collision
               and s.name not in groups.families and s.name not in groups.extra]
     if not movers:
-        return {}
+        return None
     half = np.array([(s.width / 2, s.depth / 2) for s in movers])
-    positions = random_start(site.interior, half, rng)
-    radii = np.hypot(half[:, 0], half[:, 1])
     movable = np.array([not s.rule.is_in_corner for s in movers])
-    positions = separation_steering(positions, radii, movable, site.interior, half, iterations)
-    return {s.name: (float(p[0]), float(p[1])) for s, p in zip(movers, positions)}
+    flock = Flock(site.interior, half, np.hypot(half[:, 0], half[:, 1]), movable)
+    return [s.name for s in movers], flock
+
+
+def _starts(movers: _Movers | None, rng: np.random.Generator, iterations: int
+            ) -> dict[str, tuple[float, float]]:
+    if movers is None:
+        return {}
+    names, flock = movers
+    positions = flock.steer(flock.random_start(rng), iterations)
+    return {name: (float(p[0]), float(p[1])) for name, p in zip(names, positions)}
 
 
 def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
-                iterations: int, room: tuple[Layout, list[Edge]], groups: _Copies,
+                iterations: int, room: tuple[Layout, list[Edge], _Movers | None],
+                groups: _Copies,
                 desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout]
                 ) -> tuple[Placer, list[tuple[str, str]]]:
-    """One attempt; ``room`` is the room's empty layout and its edges, made once."""
-    starts = _starts(site, specs, rng, iterations, groups)
+    """One attempt; ``room`` is the room's empty layout, its edges and the items that get
+    steered starts, made once."""
+    starts = _starts(room[2], rng, iterations)
     layout = room[0].emptied()
     placer = Placer(layout, specs, rng, room[1])
     left_out = []
@@ -249,7 +263,7 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     specs, groups = _with_copies(site, specs)
     passage = Passage(site.interior, site.doors, passage_width) if passage_width > 0 else None
     room = (Layout(site.interior, list(site.keepouts), list(site.windows), passage),
-            room_edges(site.interior))
+            room_edges(site.interior), _movers(site, specs, groups))
     best: tuple[Placer, list[tuple[str, str]]] | None = None
     desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout] = {}
     stale = 0

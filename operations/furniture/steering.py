@@ -22,7 +22,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-__all__ = ["random_start", "separation_steering"]
+__all__ = ["Flock"]
 
 _GOLDEN_ANGLE = np.pi * (3 - np.sqrt(5))
 
@@ -42,100 +42,92 @@ def _centre_bounds(polygon: Polygon, half_extents: np.ndarray) -> tuple[np.ndarr
     return np.where(fits, lo, centre), np.where(fits, hi, centre)
 
 
-def random_start(polygon: Polygon, half_extents: np.ndarray, rng: np.random.Generator,
-                 *, attempts: int = 8) -> np.ndarray:
-    """Random centres inside ``polygon`` for items of the given half extents.
+class Flock:
+    """Items of one room to start apart: random centres (:meth:`random_start`) spread
+    by Reynolds' cohesion and separation (:meth:`steer`).
 
     Parameters
     ----------
     polygon:
-        The room's free floor.
+        The room's free floor; a centre outside it is drawn again, a step that would
+        leave it is not taken.
     half_extents:
-        ``(n, 2)`` half sizes along x and z; an item too big for the room is centred.
-    rng:
-        The random stream.
-    attempts:
-        Redraws for centres that fall outside a non-rectangular polygon; the rest go to
-        a point inside the polygon.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(n, 2)`` centres.
-    """
-    lo, hi = _centre_bounds(polygon, half_extents)
-    points = rng.uniform(lo, hi)
-    for _ in range(attempts):
-        outside = ~shapely.contains_xy(polygon, points[:, 0], points[:, 1])
-        if not outside.any():
-            return points
-        points[outside] = rng.uniform(lo[outside], hi[outside])
-    inside_point = polygon.representative_point()
-    outside = ~shapely.contains_xy(polygon, points[:, 0], points[:, 1])
-    points[outside] = (inside_point.x, inside_point.y)
-    return points
-
-
-def separation_steering(positions: np.ndarray, radii: np.ndarray, movable: np.ndarray,
-                        polygon: Polygon, half_extents: np.ndarray, iterations: int, *,
-                        cohesion: float = 0.05, separation: float = 0.5,
-                        max_step: float | None = None) -> np.ndarray:
-    """Spread items apart with Reynolds' cohesion and separation.
-
-    Parameters
-    ----------
-    positions:
-        ``(n, 2)`` start centres.
+        ``(n, 2)`` half sizes along x and z; centres stay at least this far inside the
+        room's bounds, and an item too big for the room is centred.
     radii:
         ``(n,)`` radius of each item's bounding circle.
     movable:
         ``(n,)`` booleans; items that do not move still repel and attract the others.
-    polygon:
-        The room's free floor; a step that would leave it is not taken.
-    half_extents:
-        ``(n, 2)`` half sizes; centres stay at least this far inside the room's bounds.
-    iterations:
-        Rounds of steering (the grammar's ``steeringIterations``).
     cohesion, separation:
         Weights of the two behaviours.
     max_step:
         Longest move per round (default: a tenth of the room's bounding-box diagonal).
 
-    Returns
-    -------
-    numpy.ndarray
-        ``(n, 2)`` new centres (the input is not modified).
-
     Notes
     -----
-    Each round costs O(n²) for n items, all items moving at once; steering stops
-    early at a fixed point (no item moves), which rounds after it would not change. Coincident
-    items are pushed apart along a fixed, index-dependent direction, so the result is
-    a pure function of the input.
+    The solver starts a room's items afresh at every attempt: the same items in the same
+    room, so all that does not depend on the random draws is made here, once per room
+    (numpy's cost per call on arrays of a few items and shapely's per attribute came to
+    a third of what the starts cost).
 
     References
     ----------
     C. W. Reynolds, "Flocks, herds and schools: a distributed behavioral model",
     SIGGRAPH 1987.
     """
-    p = np.array(positions, dtype=float).reshape(-1, 2)
-    n = len(p)
-    movable = np.asarray(movable, dtype=bool)
-    if n < 2 or iterations <= 0 or not movable.any():
-        return p
-    radii = np.asarray(radii, dtype=float)
-    lo, hi = _centre_bounds(polygon, half_extents)
-    minx, minz, maxx, maxz = polygon.bounds
-    step_limit = max_step if max_step is not None else 0.1 * np.hypot(maxx - minx, maxz - minz)
-    angles = _GOLDEN_ANGLE * np.arange(n)
-    fallback = np.stack([np.cos(angles), np.sin(angles)], axis=1)
-    rounds = _rounds_few if n <= _FEW_ITEMS else _rounds_many
-    return rounds(p, radii, movable, polygon, lo, hi, fallback, iterations,
-                  (cohesion, separation, float(step_limit)))
+
+    def __init__(self, polygon: Polygon, half_extents: np.ndarray, radii: np.ndarray,
+                 movable: np.ndarray, *, cohesion: float = 0.05, separation: float = 0.5,
+                 max_step: float | None = None):
+        self.polygon = polygon
+        half = np.asarray(half_extents, dtype=float).reshape(-1, 2)
+        self.radii = np.asarray(radii, dtype=float)
+        self.movable = np.asarray(movable, dtype=bool)
+        self.lo, self.hi = _centre_bounds(polygon, half)
+        minx, minz, maxx, maxz = polygon.bounds
+        step_limit = max_step if max_step is not None else 0.1 * np.hypot(maxx - minx,
+                                                                         maxz - minz)
+        self.weights: _Weights = (cohesion, separation, float(step_limit))
+        angles = _GOLDEN_ANGLE * np.arange(len(half))
+        self.fallback = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        self.inside = _inside(polygon)
+
+    def random_start(self, rng: np.random.Generator, *, attempts: int = 8) -> np.ndarray:
+        """Random centres inside the room, ``(n, 2)``; ``attempts`` redraws for centres
+        that fall outside a non-rectangular room, then the rest go to a point inside it."""
+        polygon, lo, hi = self.polygon, self.lo, self.hi
+        points = rng.uniform(lo, hi)
+        for _ in range(attempts):
+            outside = ~shapely.contains_xy(polygon, points[:, 0], points[:, 1])
+            if not outside.any():
+                return points
+            points[outside] = rng.uniform(lo[outside], hi[outside])
+        inside_point = polygon.representative_point()
+        outside = ~shapely.contains_xy(polygon, points[:, 0], points[:, 1])
+        points[outside] = (inside_point.x, inside_point.y)
+        return points
+
+    def steer(self, positions: np.ndarray, iterations: int) -> np.ndarray:
+        """``(n, 2)`` centres ``positions`` spread by ``iterations`` rounds of steering
+        (the grammar's ``steeringIterations``); the input is not modified.
+
+        Each round costs O(n²) for n items, all items moving at once; steering stops
+        early at a fixed point (no item moves), which rounds after it would not change.
+        Coincident items are pushed apart along a fixed, index-dependent direction, so
+        the result is a pure function of the input.
+        """
+        p = np.array(positions, dtype=float).reshape(-1, 2)
+        if len(p) < 2 or iterations <= 0 or not self.movable.any():
+            return p
+        if len(p) <= _FEW_ITEMS:
+            return _rounds_few(p, self.radii, self.movable, self.inside, self.lo, self.hi,
+                               self.fallback, iterations, self.weights)
+        return _rounds_many(p, self.radii, self.movable, self.polygon, self.lo, self.hi,
+                            self.fallback, iterations, self.weights)
 
 
 _Weights = tuple[float, float, float]
-"""``(cohesion, separation, step_limit)`` of :func:`separation_steering`."""
+"""``(cohesion, separation, step_limit)`` of :class:`Flock`."""
 
 
 def _rounds_many(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon: Polygon,
@@ -174,9 +166,9 @@ def _rounds_many(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon:
     return p
 
 
-def _rounds_few(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon: Polygon,
-                lo: np.ndarray, hi: np.ndarray, fallback: np.ndarray, iterations: int,
-                weights: _Weights) -> np.ndarray:
+def _rounds_few(p: np.ndarray, radii: np.ndarray, movable: np.ndarray,
+                inside: Callable[[_Steps], list[bool]], lo: np.ndarray, hi: np.ndarray,
+                fallback: np.ndarray, iterations: int, weights: _Weights) -> np.ndarray:
     """:func:`_rounds_many` in Python floats, for a few items (a house's rooms steer two
     to four).
 
@@ -190,7 +182,8 @@ def _rounds_few(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon: 
     What numpy works out but never uses is left out: the push between two items is
     worked out once per pair (the other item's is its negation, exactly, unless the two
     coincide and each takes its own fallback direction), pairs of items that both stay
-    put are skipped, and so is the step of an item that stays put.
+    put are skipped, and so is the step of an item that stays put. ``inside`` tests which
+    steps stay in the room (:func:`_inside`).
     """
     cohesion, separation, step_limit = weights
     n = len(p)
@@ -199,7 +192,6 @@ def _rounds_few(p: np.ndarray, radii: np.ndarray, movable: np.ndarray, polygon: 
     movers = np.flatnonzero(movable).tolist()
     pairs = [(i, j) for i in range(n) for j in range(i + 1, n) if movable[i] or movable[j]]
     (lox, loz), (hix, hiz) = lo.T.tolist(), hi.T.tolist()
-    inside = _inside(polygon)
     for _ in range(iterations):
         sum_x, sum_z = reduce(add, xs), reduce(add, zs)
         push_x = [[0.0] * n for _ in range(n)]  # per item, the term of each item

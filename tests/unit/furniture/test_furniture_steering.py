@@ -7,11 +7,18 @@ import shapely
 from hypothesis import given, settings, strategies as st
 from shapely.geometry import Polygon, box
 
-from cga.operations.furniture.steering import (_GOLDEN_ANGLE, _centre_bounds, _inside,
-                                               _rounds_few, _rounds_many, random_start,
-                                               separation_steering)
+from cga.operations.furniture.steering import (_GOLDEN_ANGLE, Flock, _centre_bounds, _inside,
+                                               _rounds_few, _rounds_many)
 
 L_ROOM = Polygon([(0, 0), (6, 0), (6, 2), (2, 2), (2, 5), (0, 5)])
+
+
+def random_start(polygon, half, rng):
+    return Flock(polygon, half, np.ones(len(half)), np.ones(len(half), bool)).random_start(rng)
+
+
+def separation_steering(positions, radii, movable, polygon, half, iterations):
+    return Flock(polygon, half, radii, movable).steer(positions, iterations)
 
 
 def overlap(points: np.ndarray, radii: np.ndarray) -> float:
@@ -154,9 +161,9 @@ def test_few_items_give_the_floats_numpy_gives(n, seed, iterations, room, coinci
     angles = _GOLDEN_ANGLE * np.arange(n)
     fallback = np.stack([np.cos(angles), np.sin(angles)], axis=1)
     weights = (0.05, 0.5, float(rng.uniform(0.05, 1.0)))
-    args = (radii, movable, room, lo, hi, fallback, iterations, weights)
-    few = _rounds_few(start.copy(), *args)
-    many = _rounds_many(start.copy(), *args)
+    args = (lo, hi, fallback, iterations, weights)
+    few = _rounds_few(start.copy(), radii, movable, _inside(room), *args)
+    many = _rounds_many(start.copy(), radii, movable, room, *args)
     assert few.tobytes() == many.tobytes()
 
 
@@ -175,3 +182,31 @@ def test_the_inside_test_answers_as_contains_xy(room, picks):
              for k, (a, b, x, z) in enumerate(picks)]
     want = shapely.contains_xy(room, [x for _, x, _ in steps], [z for _, _, z in steps])
     assert _inside(room)(steps) == want.tolist()
+
+
+def plain_start(polygon, half, rng, attempts=8):
+    """Random starts written plainly, each draw's bounds made afresh: the reference for
+    the starts of a :class:`Flock`, whose bounds are made once per room."""
+    minx, minz, maxx, maxz = polygon.bounds
+    lo, hi = np.array([minx, minz]) + half, np.array([maxx, maxz]) - half
+    middle = np.array([(minx + maxx) / 2, (minz + maxz) / 2])
+    lo, hi = np.where(lo <= hi, lo, middle), np.where(lo <= hi, hi, middle)
+    points = rng.uniform(lo, hi)
+    for _ in range(attempts):
+        outside = ~shapely.contains_xy(polygon, points[:, 0], points[:, 1])
+        points[outside] = rng.uniform(lo[outside], hi[outside])
+    outside = ~shapely.contains_xy(polygon, points[:, 0], points[:, 1])
+    points[outside] = polygon.representative_point().coords[0]
+    return points
+
+
+@settings(max_examples=100, deadline=None)
+@given(n=st.integers(1, 10), seed=st.integers(0, 2**32 - 1),
+       room=st.sampled_from([box(0, 0, 6, 5), box(0, 0, 1.5, 1.2), L_ROOM]))
+def test_a_flock_starts_where_the_plain_formulation_starts(n, seed, room):
+    """Three attempts of one flock against draws made afresh, from one stream each."""
+    half = np.random.default_rng(seed).uniform(0.05, 1.0, size=(n, 2))
+    flock = Flock(room, half, np.ones(n), np.ones(n, bool))
+    ours, plain = np.random.default_rng(seed), np.random.default_rng(seed)
+    for _ in range(3):
+        assert flock.random_start(ours).tobytes() == plain_start(room, half, plain).tobytes()
