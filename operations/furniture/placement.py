@@ -52,6 +52,21 @@ _LOOKAHEAD = 16
 _PASSAGE_KINDS = ("passage", "pocket")
 
 
+def _side_normals(rotation: int) -> tuple[np.ndarray, ...]:
+    f = np.array(front_vector(rotation))
+    f.flags.writeable = False
+    s = np.array([-f[1], f[0]])
+    s.flags.writeable = False
+    back, other_flank = -f, -s
+    back.flags.writeable = other_flank.flags.writeable = False
+    return f, back, s, other_flank
+
+
+_SIDES = tuple(_side_normals(rotation) for rotation in range(4))
+"""Per quarter turn, an item's side normals: front, back, then its two flanks (made
+once: the solver asks for them for every child it seats; read-only, being shared)."""
+
+
 @dataclass(frozen=True)
 class Edge:
     """A straight piece of a room's free-floor boundary with the normal into the room.
@@ -492,11 +507,9 @@ class Placer:
         return spec, pose, (pose.x + b[0], pose.z + b[1], pose.x + b[2], pose.z + b[3])
 
     @staticmethod
-    def _sides(pose: Pose) -> list[np.ndarray]:
-        """The parent's side normals: front, back, then its two flanks."""
-        f = np.array(front_vector(pose.rotation))
-        s = np.array([-f[1], f[0]])
-        return [f, -f, s, -s]
+    def _sides(pose: Pose) -> tuple[np.ndarray, ...]:
+        """The parent's side normals: front, back, then its two flanks (:data:`_SIDES`)."""
+        return _SIDES[pose.rotation % 4]
 
     def around(self, spec: ItemSpec, parent: str) -> str | None:
         """Put a child on a free side of its parent, facing it; siblings sharing a side
@@ -575,7 +588,7 @@ class Placer:
         rule = spec.rule
         rotation = ppose.rotation
         # the child's centre along the parent's front axis: backs on one line
-        centre = np.array([ppose.x, ppose.z]) + np.array(front_vector(rotation)) * (
+        centre = np.array([ppose.x, ppose.z]) + self._sides(ppose)[0] * (
             spec.depth - pspec.depth) / 2
         first: Conflict | None = None
         for normal in self._sides(ppose)[2:]:
@@ -603,7 +616,7 @@ class Placer:
             return self._opposite_wall(spec, parent)
         pspec, ppose, pbox = self._parent(parent)
         rule = spec.rule
-        f = np.array(front_vector(ppose.rotation))
+        f = self._sides(ppose)[0]
         rotation = (ppose.rotation + 2) % 4
         axis = 0 if abs(f[0]) > 0.5 else 1  # the axis the gap is measured along
         lateral_axis = 1 - axis
@@ -631,7 +644,7 @@ class Placer:
 
     def _opposite_wall(self, spec: ItemSpec, parent: str) -> str | None:
         pspec, ppose, pbox = self._parent(parent)
-        f = np.array(front_vector(ppose.rotation))
+        f = self._sides(ppose)[0]
         axis = 0 if abs(f[0]) > 0.5 else 1
         lateral_axis = 1 - axis
         rotation = (ppose.rotation + 2) % 4

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, box
 
-from cga.model import FurnitureItem
+from cga.model import FurnitureItem, front_vector
 from cga.operations.furniture.clearance import Keepout
 from cga.operations.furniture.layout import ItemSpec, Layout, Pose
 from cga.operations.furniture.placement import Edge, Placer, convex_corners, room_edges
@@ -221,3 +221,13 @@ def test_parent_not_placed_rug_and_free_items():
     big = spec("stage", (4.8, 3.8))
     reason = p.place(big, (2.5, 2.0))
     assert reason.startswith("no free spot for stage (")
+
+
+def test_side_normals_are_those_made_from_the_front_vector():
+    """The table of side normals against the normals made afresh, signed zeros too."""
+    for rotation in range(-5, 9):
+        f = np.array(front_vector(rotation))
+        s = np.array([-f[1], f[0]])
+        got = Placer._sides(Pose(0.0, 0.0, rotation))
+        assert [v.tobytes() for v in got] == [v.tobytes() for v in (f, -f, s, -s)]
+        assert not any(v.flags.writeable for v in got)
