@@ -505,11 +505,10 @@ class Layout:
             keys = rows * _MAX_PARTS + part_rows
             order = (keys.min(keepdims=True) if first and len(keys) else np.sort(keys))
             return [divmod(k, _MAX_PARTS) for k in order.tolist()]
-        owner = self._ids.get(spec.name, -1)
         family = [self._ids[n] for n in related if n in self._ids]
-        non_collision = spec.rule.non_collision
-        return sorted((row, part) for part, row in zip(part_rows.tolist(), rows.tolist())
-                      if index.blocks(row, part == 0, owner, non_collision, family))
+        return sorted(index.blocking_few(part_rows.tolist(), rows.tolist(),
+                                         self._ids.get(spec.name, -1), spec.rule.non_collision,
+                                         family))
 
     def _blocking_rows(self, index: ObstacleIndex, spec: ItemSpec, part_rows: np.ndarray,
                        rows: np.ndarray, related: frozenset[str]

@@ -131,16 +131,16 @@ class ObstacleIndex:
                 blocked &= columns[:, 2] != member
         return blocked
 
-    def blocks(self, row: int, part_is_body: bool, owner: int, non_collision: bool,
-               related: Collection[int]) -> bool:
-        """:meth:`blocking` for one hit, without numpy's cost per call: for the few hits
-        of a query in an ordinary room."""
+    def blocking_few(self, part_rows: list[int], rows: list[int], owner: int,
+                     non_collision: bool, related: Collection[int]) -> list[tuple[int, int]]:
+        """:meth:`blocking` for the few hits ``(part_rows[k], rows[k])`` of a query in an
+        ordinary room, without numpy's cost per call: ``(row, part)`` of each hit that
+        blocks its part, in query order (one call per query, the hits tested inline)."""
         codes, owners, clearance_owners = self.lists
-        if owners[row] == owner:
-            return False
         table = _RUG_BLOCKED_BY_LIST if non_collision else _BLOCKED_BY_LIST
-        return table[codes[row] + part_is_body] and (non_collision
-                                                     or clearance_owners[row] not in related)
+        return [(row, part) for part, row in zip(part_rows, rows)
+                if owners[row] != owner and table[codes[row] + (part == 0)]
+                and (non_collision or clearance_owners[row] not in related)]
 
     @property
     def lists(self) -> list[list[int]]:
