@@ -192,10 +192,12 @@ def _rounds_few(p: np.ndarray, radii: np.ndarray, movable: np.ndarray,
     movers = np.flatnonzero(movable).tolist()
     pairs = [(i, j) for i in range(n) for j in range(i + 1, n) if movable[i] or movable[j]]
     (lox, loz), (hix, hiz) = lo.T.tolist(), hi.T.tolist()
+    # per item, the term of each item: every round writes each term of a moving item's
+    # row but its own, which stays +0.0
+    push_x = [[0.0] * n for _ in range(n)]
+    push_z = [[0.0] * n for _ in range(n)]
     for _ in range(iterations):
         sum_x, sum_z = reduce(add, xs), reduce(add, zs)
-        push_x = [[0.0] * n for _ in range(n)]  # per item, the term of each item
-        push_z = [[0.0] * n for _ in range(n)]
         for i, j in pairs:
             dx, dz = xs[i] - xs[j], zs[i] - zs[j]
             distance = math.sqrt(dx * dx + dz * dz)
