@@ -16,7 +16,7 @@ it spent reading the solid as cells: a piece's convexity is settled by whether i
 its bounding box, or, when it does not, by an empty cell between two of its cells in a
 row (which the hull must hold), and only else by a hull.
 A solid it cannot read as cells (a face off the axes, two coordinates closer than
-:data:`_MIN_SPACING`) gives ``None`` and the caller cuts it with manifold3d. The robot
+:data:`MIN_SPACING`) gives ``None`` and the caller cuts it with manifold3d. The robot
 exports keep cutting with manifold3d (:func:`cga.collision.structure_pieces`): on
 clean input the same boxes, and their files stay byte for byte what they were. Where a manifold3d
 split leaves a zero-thickness flap on a piece (a face of the solid lying in the cutting
@@ -38,15 +38,16 @@ from cga.mesh import MeshLike, is_watertight
 
 from ._solids import _CONVEX_TOLERANCE, cut_pieces
 
-__all__ = ["box_pieces"]
+__all__ = ["MIN_SPACING", "PROBE", "box_pieces"]
 
-_MIN_SPACING = 2e-3
+MIN_SPACING = 2e-3
 """m: grid planes closer than this are left to manifold3d. Every cell is then larger
 than the slivers manifold3d drops (``_MIN_VOLUME``, 1e-9 m³), so no piece is dropped."""
 
-_PROBE = (0.3183098862, 0.2718281828)
+PROBE = (0.3183098862, 0.2718281828)
 """Where in each cell (fractions of its y and z extent) the parity ray runs: off the
-diagonals along which faces are triangulated."""
+diagonals along which faces are triangulated. :mod:`cga.checks._rectilinear` reads its
+cells at the same point and leaves the same close planes to manifold3d."""
 
 _BOX_FACES = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4],
                        [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]])
@@ -83,7 +84,7 @@ def box_pieces(mesh: MeshLike) -> Sequence[MeshLike] | None:
     if not np.all(flat.sum(axis=1) == 1):
         return None
     grid = [np.unique(vertices[:, k]) for k in range(3)]
-    if any(len(g) < 2 or float(np.diff(g).min()) < _MIN_SPACING for g in grid):
+    if any(len(g) < 2 or float(np.diff(g).min()) < MIN_SPACING for g in grid):
         return None
     if not is_watertight(faces):
         return None
@@ -111,7 +112,7 @@ def _split(piece: _Block, axis: int, index: int) -> list[_Block] | None:
     upper first, as manifold3d's split gives them), when the plane passes through it and
     it is not convex. Both parts hold a cell: the plane lies between the piece's end
     cells."""
-    # grid planes are _MIN_SPACING apart: strictly inside the piece's box (by more
+    # grid planes are MIN_SPACING apart: strictly inside the piece's box (by more
     # than convex_pieces' 1e-9) is strictly between its end planes
     if not (piece.lo[axis] < index <= piece.hi[axis]) or piece.convex:
         return None
@@ -247,8 +248,8 @@ def _cells(x_faces: np.ndarray, grid: list[np.ndarray]) -> np.ndarray | None:
     (triangles, counter-clockwise seen from outside): along each row of cells, each
     face the row passes through enters the solid (outward normal −x) or leaves it."""
     xs, ys, zs = grid
-    py = ys[:-1] + _PROBE[0] * np.diff(ys)
-    pz = zs[:-1] + _PROBE[1] * np.diff(zs)
+    py = ys[:-1] + PROBE[0] * np.diff(ys)
+    pz = zs[:-1] + PROBE[1] * np.diff(zs)
     points = np.stack(np.meshgrid(py, pz, indexing="ij"), axis=-1)[None]  # (1, ny, nz, 2)
     a, b, c = (x_faces[:, k, 1:][:, None, None, :] for k in range(3))
     sides = [_cross(q - p, points - p) for p, q in ((a, b), (b, c), (c, a))]

@@ -30,7 +30,7 @@ from shapely.geometry.base import BaseGeometry
 
 from cga.mesh import MeshLike
 
-from ._boxes import _MIN_SPACING, _PROBE
+from ._boxes import MIN_SPACING, PROBE
 
 __all__ = ["rectilinear_shadows", "union_by_owner"]
 
@@ -46,7 +46,7 @@ def rectilinear_shadows(meshes: Sequence[MeshLike], y0: float,
     """The plan ``(x, z)`` shadow of the part of each mesh between heights ``y0`` and
     ``y1``, or ``None`` for a mesh that is not a watertight, consistently oriented
     solid with every face in an axis plane, or that has two of its planes, or one and a
-    band plane, closer than :data:`~cga.checks._boxes._MIN_SPACING` (the caller then
+    band plane, closer than :data:`~cga.checks._boxes.MIN_SPACING` (the caller then
     uses manifold3d)."""
     solids = _Solids(meshes)
     y = solids.vertices[:, 1]
@@ -97,7 +97,7 @@ class _Solids:
         self.horizontal = solid & self.flat[:, 1]
         scale = np.zeros(count)
         np.maximum.at(scale, self.vertex_owner, np.abs(self.vertices).max(axis=1, initial=0.0))
-        self.gap = np.maximum(_MIN_SPACING, _RELATIVE_SPACING * scale)
+        self.gap = np.maximum(MIN_SPACING, _RELATIVE_SPACING * scale)
         """Per mesh, how close two grid planes may come for this module to answer."""
         spaced = np.ones(count, dtype=bool)
         for axis in range(3):
@@ -144,7 +144,7 @@ class _Cells:
         z0 = self.zs[self.z_start[self.owner] + self.k]
         z1 = self.zs[self.z_start[self.owner] + self.k + 1]
         self.corners = (x0, z0, x1, z1)
-        self.probe = np.stack([x0 + _PROBE[0] * (x1 - x0), z0 + _PROBE[1] * (z1 - z0)], axis=-1)
+        self.probe = np.stack([x0 + PROBE[0] * (x1 - x0), z0 + PROBE[1] * (z1 - z0)], axis=-1)
 
     def shadow(self, solids: _Solids, y0: float, y1: float) -> tuple[np.ndarray, np.ndarray]:
         """Which cells are in the band's shadow, and per solid whether its faces gave a
