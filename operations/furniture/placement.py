@@ -287,18 +287,41 @@ class Placer:
             return reason
         return f"{reason}; where it fits, it {passage}"
 
-    def _place(self, spec: ItemSpec, start: tuple[float, float] | None) -> str | None:
+    def pass_over(self, spec: ItemSpec) -> None:
+        """Leave ``spec`` unplaced without trying it, but take from the random stream
+        what :meth:`place` would have taken (a free-standing item's orientation and
+        extra start points): the solver gives up an attempt that can no longer place
+        more than its best, and the attempts and rooms after it must draw the same
+        numbers as if it had run to the end."""
+        if spec.name not in self.layout.placed and self._strategy(spec) == "free":
+            self._free_draws()
+
+    @staticmethod
+    def _strategy(spec: ItemSpec) -> str:
+        """Which of the strategies :meth:`place` uses for ``spec``."""
         rule = spec.rule
         if rule.pair_with is not None:
-            if rule.pair_with not in self.layout.placed:
-                return f"parent {rule.pair_with} not placed"
-            return self._place_child(spec)
-        centre = start if start is not None else self._room_centre()
+            return "child"
         if rule.non_collision:
-            return self.middle(spec)
+            return "middle"
         if rule.is_in_corner:
-            return self.corner(spec, centre)
+            return "corner"
         if rule.is_along_wall:
+            return "wall"
+        return "free"
+
+    def _place(self, spec: ItemSpec, start: tuple[float, float] | None) -> str | None:
+        strategy = self._strategy(spec)
+        if strategy == "child":
+            if spec.rule.pair_with not in self.layout.placed:
+                return f"parent {spec.rule.pair_with} not placed"
+            return self._place_child(spec)
+        if strategy == "middle":
+            return self.middle(spec)
+        centre = start if start is not None else self._room_centre()
+        if strategy == "corner":
+            return self.corner(spec, centre)
+        if strategy == "wall":
             return self.along_wall(spec, centre)
         return self.free(spec, centre)
 
@@ -460,9 +483,8 @@ class Placer:
     def free(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
         """Put a free-standing item (a dining or meeting table) at the free spot nearest
         the middle of the room, else nearest its start or a few random points."""
-        rotations = [0, 1] if self.rng.random() < 0.5 else [1, 0]
+        rotations, extra = self._free_draws()
         minx, minz, maxx, maxz = self.layout.interior.bounds
-        extra = self.rng.uniform((minx, minz), (maxx, maxz), size=(_FREE_SAMPLES, 2))
         blocked: list[Conflict] = []
 
         def poses() -> Iterator[Pose]:
@@ -487,6 +509,14 @@ class Placer:
         if self._commit(spec, poses()):
             return None
         return f"no free spot for {spec.name} ({blocked[0].describe()})"
+
+    def _free_draws(self) -> tuple[list[int], np.ndarray]:
+        """A free-standing item's draws: the orientation it tries first and
+        :data:`_FREE_SAMPLES` extra start points in the room's bounds."""
+        rotations = [0, 1] if self.rng.random() < 0.5 else [1, 0]
+        minx, minz, maxx, maxz = self.layout.interior.bounds
+        return rotations, self.rng.uniform((minx, minz), (maxx, maxz),
+                                           size=(_FREE_SAMPLES, 2))
 
     def middle(self, spec: ItemSpec) -> str | None:
         """Lay a non-colliding item (a rug) in the middle of the room, long side along the

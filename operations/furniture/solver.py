@@ -179,15 +179,26 @@ def _starts(movers: _Movers | None, rng: np.random.Generator, iterations: int
 def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator,
                 iterations: int, room: tuple[Layout, list[Edge], _Movers | None],
                 groups: _Copies,
-                desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout]
-                ) -> tuple[Placer, list[tuple[str, str]]]:
+                desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout],
+                to_beat: int | None = None) -> tuple[Placer, list[tuple[str, str]]]:
     """One attempt; ``room`` is the room's empty layout, its edges and the items that get
-    steered starts, made once."""
+    steered starts, made once.
+
+    ``to_beat`` is the number of items the best attempt so far placed (None: this is the
+    first). The solver keeps an attempt only if it places more, so once the items placed
+    and those still to come cannot add up to more, the rest is passed over
+    (:meth:`.placement.Placer.pass_over`, which draws what placing them would): the room's
+    result and the random stream are those of running the attempt to its end. In a room
+    that keeps leaving an item out, the attempts after the first are most of its cost.
+    Rooms with perimeter rows run to the end: their desk layouts, made in any attempt,
+    are reported (``cut_short``)."""
     starts = _starts(room[2], rng, iterations)
     layout = room[0].emptied()
     placer = Placer(layout, specs, rng, room[1])
     left_out = []
-    for spec in specs:
+    if groups.families:
+        to_beat = None
+    for index, spec in enumerate(specs):
         if spec.name in groups.extra:
             continue
         if spec.name in groups.families:
@@ -202,8 +213,15 @@ def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Genera
                 for item, pose in desks.poses:
                     layout.add(item, pose)
         reason = placer.place(spec, starts.get(spec.name))
-        if reason is not None:
-            left_out.append((spec.name, reason))
+        if reason is None:
+            continue
+        left_out.append((spec.name, reason))
+        later = specs[index + 1:]
+        if to_beat is not None and (len(layout.placed) + sum(s.name not in layout.placed
+                                                             for s in later) <= to_beat):
+            for other in later:
+                placer.pass_over(other)
+            break
     return placer, left_out
 
 
@@ -269,7 +287,8 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
     stale = 0
     for _ in range(max(1, attempts)):
         placer, left_out = _solve_once(site, specs, rng, steering_iterations, room, groups,
-                                       desk_layouts)
+                                       desk_layouts,
+                                       None if best is None else len(best[0].layout.placed))
         if best is None or len(placer.layout.placed) > len(best[0].layout.placed):
             best, stale = (placer, left_out), 0
         else:

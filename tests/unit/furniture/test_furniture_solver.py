@@ -8,9 +8,14 @@ import numpy as np
 import pytest
 
 from furniture_checks import furniture_violations
+from hall_floors import KINDS, with_hall
 
+from cga.authoring import floor_from_rectangles, furnish_floor, type_floor
+from cga.errors import NoSolutionError
+from cga.operations.furniture import placement, solver
 from cga.operations.furniture.rules import load_furniture_rules, parse_furniture_rules
-from cga.operations.furniture.solver import furnish_plan
+from cga.operations.furniture.layout import ItemSpec
+from cga.operations.furniture.solver import RoomSite, furnish_plan
 
 
 def models_for(rules, library):
@@ -129,3 +134,78 @@ def test_an_overfull_table_leaves_the_surplus_out_before_solving(room_plan, libr
     assert solved * plant[0] * plant[2] <= 2 * interior + plant[0] * plant[2]
     assert len(crowded) >= 400 - 2 * interior / (plant[0] * plant[2]) - 1
     assert len(furniture) + len(diagnostics) == 400 + sum(1 for i in furniture if i.is_detail)
+
+
+# -- an attempt given up once it cannot beat the best changes nothing ---------------------
+
+def _run_to_the_end(solve_once):
+    """``solver._solve_once`` as it was before attempts were given up: every attempt
+    places every item it can, whatever the best attempt so far placed."""
+    def solve(site, specs, rng, iterations, room, groups, desk_layouts, to_beat=None):
+        return solve_once(site, specs, rng, iterations, room, groups, desk_layouts)
+    return solve
+
+
+@pytest.mark.parametrize("kind, disorder, typed_floors",
+                         [("house", 0.0, 30), ("house", 0.5, 30), ("office", 0.0, 5)])
+def test_attempts_given_up_early_give_the_same_furniture(monkeypatch, library, kind, disorder,
+                                                         typed_floors):
+    """The solver passes over the rest of an attempt that can no longer place more items
+    than its best one. Its floors must be those of running every attempt to the end (the
+    later attempts of a room and its disorder draw from the same stream), and the
+    shortcut must be taken on the house floors, or the comparison proves nothing."""
+    passed_over = []
+    pass_over = placement.Placer.pass_over
+    monkeypatch.setattr(placement.Placer, "pass_over",
+                        lambda self, spec: (passed_over.append(spec.name),
+                                            pass_over(self, spec))[1])
+    types, table, width, depth, _ = KINDS[kind]
+    floors = 0
+    for seed in range(1, 46):
+        rng = np.random.default_rng(seed)
+        plan = floor_from_rectangles(with_hall(rng, width, depth), windows_per_wall=2,
+                                     circulation=[0])
+        try:
+            typed = type_floor(plan, types, seed=seed)
+        except NoSolutionError:
+            continue
+        floors += 1
+        furnished = []
+        for solve_once in (solver._solve_once, _run_to_the_end(solver._solve_once)):
+            with monkeypatch.context() as patch:
+                patch.setattr(solver, "_solve_once", solve_once)
+                furnished.append(furnish_floor(typed, table, seed=seed, disorder=disorder,
+                                               library=library))
+        shortcut, full = furnished
+        assert shortcut.furniture == full.furniture, f"{kind} seed {seed}"
+        assert shortcut.diagnostics == full.diagnostics, f"{kind} seed {seed}"
+    assert floors >= typed_floors  # office typing fails on most of these floors
+    if kind == "house":
+        assert len(passed_over) > 20
+
+
+def test_a_free_item_passed_over_takes_its_draws(monkeypatch, room_plan, library):
+    """A free-standing item in an attempt given up takes the draws placing it would have
+    taken: the wall table never fits, the chair after it stands freely, so every attempt
+    after the first gives up before the chair, and the room's random stream after the
+    room (what its disorder then draws from) must be that of running every attempt to
+    the end."""
+    rules = parse_furniture_rules("Room;Name;isAlongWall\n"
+                                  "Livingroom;tableBig;true\n"
+                                  "Livingroom;chair;false\n")
+    site = RoomSite.from_plan(room_plan(1.8, 1.8), 0)
+    specs = [ItemSpec(rule, *models_for(rules, library)[rule.name])
+             for rule in rules.for_room("Livingroom")]
+    passed_over = []
+    pass_over = placement.Placer.pass_over
+    monkeypatch.setattr(placement.Placer, "pass_over",
+                        lambda self, spec: (passed_over.append(spec.name),
+                                            pass_over(self, spec))[1])
+    outcomes = []
+    for solve_once in (solver._solve_once, _run_to_the_end(solver._solve_once)):
+        with monkeypatch.context() as patch:
+            patch.setattr(solver, "_solve_once", solve_once)
+            rng = np.random.default_rng(3)
+            outcomes.append((solver.furnish_room(site, specs, rng), rng.bit_generator.state))
+    assert outcomes[0] == outcomes[1]
+    assert passed_over == ["chair"] * solver.PATIENCE
