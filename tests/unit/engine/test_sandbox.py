@@ -65,6 +65,20 @@ def test_paths_leaving_the_tree_are_refused(layout, written):
     assert "SECRET" not in message and "root:" not in message
 
 
+def test_a_sibling_folder_sharing_the_name_as_prefix_is_outside(tmp_path):
+    """``project2/`` and ``project.old/`` start with the text of ``project`` but are not
+    inside it; the folder itself and anything below it are."""
+    project = tmp_path / "project"
+    for folder in (project / "sub", tmp_path / "project2", tmp_path / "project.old"):
+        folder.mkdir(parents=True)
+    sandbox = Sandbox(((project, "the grammar's folder"),))
+    assert sandbox.contains(project) and sandbox.contains(project / "sub" / "t.csv")
+    assert not sandbox.contains(tmp_path / "project2" / "t.csv")
+    assert not sandbox.contains(tmp_path / "project.old")
+    assert not sandbox.contains(tmp_path)
+    assert Sandbox(((Path("/"), "everything"),)).contains(tmp_path / "project2")
+
+
 def test_absolute_path_inside_the_tree_is_read(layout):
     project, _ = layout
     table = project / "tables" / "types.csv"
