@@ -200,9 +200,8 @@ class Passage:
         self.radius = width / 2
         self.min_share = min_share
         eroded = interior.buffer(-self.radius, join_style="mitre")
-        zones = np.array([d.zone(self.radius + APPROACH_MARGIN).buffer(-_TOUCH,
-                                                                       join_style="mitre")
-                          for d in doors], dtype=object)
+        zones = shapely.buffer(np.array([d.zone(self.radius + APPROACH_MARGIN) for d in doors],
+                                        dtype=object), -_TOUCH, join_style="mitre")
         pieces, areas = _parts(eroded)
         pieces = pieces[np.greater(areas, _AREA_EPS)]
         meets = _meets(pieces, zones)
