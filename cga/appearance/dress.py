@@ -18,8 +18,6 @@ every exporter writes (one glTF primitive, OBJ ``usemtl`` run or USD mesh per ma
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import replace
-from typing import Any
 from weakref import WeakKeyDictionary
 
 import numpy as np
@@ -60,7 +58,7 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
     floors = [_floor_of(node.path) for node in nodes]
     faced = _faced_rooms(nodes, floors, by_floor)
     walls: dict[int, list[Material]] = {}
-    items: dict[tuple[str, ...], _Dressing] = {}
+    items = _ItemDressings()
     out = []
     for k, (node, floor) in enumerate(zip(nodes, floors)):
         plan = by_floor.get(floor) if floor is not None else None
@@ -73,8 +71,24 @@ def dress_nodes(nodes: Sequence[SceneNode], plans: Sequence[FloorPlan], palette:
             dressing = _furniture(node, plan, palette, models, items)
         else:
             dressing = _compact(*_dress(node, plan, palette))
-        out.append(replace(node, **dressing))
+        out.append(_dressed(node, *dressing))
     return out
+
+
+def _dressed(node: SceneNode, materials: tuple[Material, ...],
+             face_materials: np.ndarray) -> SceneNode:
+    """``node`` with its materials: ``dataclasses.replace`` written out (every field of
+    :class:`~cga.scene.SceneNode` named, :data:`_KEPT` and the two set here), as
+    ``replace`` walks the dataclass's fields for each of a house's couple of hundred
+    nodes: a fifth of the time dressing took."""
+    return SceneNode(path=node.path, kind=node.kind, mesh=node.mesh, extras=node.extras,
+                     static=node.static, parts=node.parts, item=node.item, door=node.door,
+                     materials=materials, face_materials=face_materials)
+
+
+_KEPT = ("path", "kind", "mesh", "extras", "static", "parts", "item", "door")
+"""The fields of :class:`~cga.scene.SceneNode` that :func:`_dressed` copies (a test checks
+they and ``materials``, ``face_materials`` are all of them)."""
 
 
 def _faced_rooms(nodes: Sequence[SceneNode], floors: list[int | None],
@@ -107,14 +121,14 @@ def _faced_rooms(nodes: Sequence[SceneNode], floors: list[int | None],
     return faced
 
 
-_Dressing = dict[str, Any]
-"""A node's ``materials`` and ``face_materials``, as :func:`dataclasses.replace` takes them."""
+_Dressing = tuple[tuple[Material, ...], np.ndarray]
+"""A node's ``materials`` and ``face_materials``."""
 
 
 def _compact(materials: list[Material], index: np.ndarray) -> _Dressing:
     """The materials the faces use, each once, in candidate order, and the faces'
     indices into them."""
-    used = set(np.flatnonzero(np.bincount(index, minlength=len(materials))).tolist())
+    used = set(index.tolist())  # a few dozen faces: cheaper than numpy's bincount
     unique: dict[str, int] = {}
     order: list[Material] = []
     remap = np.zeros(len(materials), dtype=np.int64)
@@ -125,7 +139,7 @@ def _compact(materials: list[Material], index: np.ndarray) -> _Dressing:
             unique[m.name] = len(order)
             order.append(m)
         remap[k] = unique[m.name]
-    return {"materials": tuple(order), "face_materials": remap[index]}
+    return tuple(order), remap[index]
 
 
 def _floor_of(path: str) -> int | None:
@@ -228,23 +242,39 @@ def _parts_of(model: object) -> _Parts:
     return out, index
 
 
+class _ItemDressings:
+    """What :func:`_furniture` has worked out in one :func:`dress_nodes` call: per model and
+    room, the materials, the model's face count and the dressing; per look (model and
+    material names), the dressing items of any room dressed alike share."""
+
+    def __init__(self) -> None:
+        self.by_room: dict[tuple[str, ...], tuple[list[Material], int, _Dressing]] = {}
+        self.by_look: dict[tuple[str, ...], _Dressing] = {}
+
+
 def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette, models: object,
-               dressed: "dict[tuple[str, ...], _Dressing]") -> _Dressing:
+               dressed: _ItemDressings) -> _Dressing:
     """A furniture item's materials: its model's parts' (:meth:`Palette.parts`), by the
     part each face belongs to.
 
-    Items of one model dressed alike (the chairs of a room; in a neutral build, every
-    item of the model) share one answer, kept in ``dressed`` by model and material
+    Items of one model in one room (the chairs of a room) have the same materials, so
+    they are looked up once per model and room; items dressed alike (in a neutral
+    build, every item of the model) share one answer, kept by model and material
     names; their ``face_materials`` is one read-only array."""
     item = node.item
     assert item is not None
-    parts, index = _model_parts(models.get(item.model))  # type: ignore[attr-defined]
     key = (f"floor{plan.index}", f"room{item.room}") if plan is not None else ()
-    materials = palette.parts(item.model, parts, key=key)
-    if len(index) != len(node.mesh.faces):  # a mesh not made from the model's parts
+    known = dressed.by_room.get((item.model, *key))
+    if known is None:
+        parts, index = _model_parts(models.get(item.model))  # type: ignore[attr-defined]
+        materials = palette.parts(item.model, parts, key=key)
+        look = (item.model, *(m.name for m in materials))
+        if look not in dressed.by_look:
+            dressing = dressed.by_look[look] = _compact(materials, index)
+            dressing[1].flags.writeable = False
+        known = dressed.by_room[(item.model, *key)] = (materials, len(index),
+                                                       dressed.by_look[look])
+    materials, count, dressing = known
+    if count != len(node.mesh.faces):  # a mesh not made from the model's parts
         return _compact(materials[:1], np.zeros(len(node.mesh.faces), dtype=np.int64))
-    look = (item.model, *(m.name for m in materials))
-    if look not in dressed:
-        dressing = dressed[look] = _compact(materials, index)
-        dressing["face_materials"].flags.writeable = False
-    return dressed[look]
+    return dressing
