@@ -20,7 +20,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import trimesh
 
 __all__ = ["MeshLike", "TriangleMesh", "area_centroid", "as_trimesh", "corner_means",
-           "face_normals", "is_watertight", "mirrors", "transform_points", "unitize",
+           "face_normals", "homogeneous", "is_watertight", "mirrors", "transform_points", "unitize",
            "volume_and_centre"]
 
 _IDENTITY_ENTRIES = np.eye(4).ravel().tolist()
@@ -226,19 +226,31 @@ def _near_identity(matrix: np.ndarray) -> bool:
     return all(abs(a - b) < 1e-8 for a, b in zip(entries, _IDENTITY_ENTRIES))
 
 
-def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
+def transform_points(points: np.ndarray, matrix: np.ndarray,
+                     stack: np.ndarray | None = None) -> np.ndarray:
     """``points`` (``float[n, 3]``) moved by the 4×4 affine ``matrix``, computed as
     :func:`trimesh.transform_points` computes it (one product with the homogeneous
     points; a matrix within 1e-8 of the identity leaves them as they are), so the floats
-    are the same bit for bit."""
+    are the same bit for bit.
+
+    ``stack`` is :func:`homogeneous` of ``points``, for a caller that moves the same
+    points many times (a furniture model posed for each of its items) and keeps it."""
     points = np.asarray(points, dtype=np.float64)
     matrix = np.asarray(matrix, dtype=np.float64)
     if not len(points) or _near_identity(matrix):
         return np.ascontiguousarray(points.copy())
-    stack = np.empty((len(points), 4))  # np.column_stack((points, ones)), made directly
+    if stack is None:
+        stack = homogeneous(points)
+    return np.dot(matrix, stack.T).T[:, :3]
+
+
+def homogeneous(points: np.ndarray) -> np.ndarray:
+    """``points`` (``float[n, 3]``) as homogeneous rows ``(x, y, z, 1)``, ``float[n, 4]``:
+    trimesh's ``np.column_stack((points, ones))``, made directly."""
+    stack = np.empty((len(points), 4))
     stack[:, :3] = points
     stack[:, 3] = 1.0
-    return np.dot(matrix, stack.T).T[:, :3]
+    return stack
 
 
 def mirrors(matrix: np.ndarray) -> bool:

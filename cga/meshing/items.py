@@ -9,12 +9,13 @@ from __future__ import annotations
 
 from functools import lru_cache
 from itertools import accumulate
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from cga.mesh import TriangleMesh, transform_points
+from cga.mesh import TriangleMesh, homogeneous, transform_points
 from cga.model import FloorPlan, FurnitureItem, rotation_matrix
-from cga.operations.furniture.library import FurnitureModel, ModelLibrary
+from cga.operations.furniture.library import FurnitureModel, ModelGeometry, ModelLibrary
 from cga.scene import ItemInfo, MeshArrays, SceneNode
 
 __all__ = ["item_node", "item_transform"]
@@ -35,25 +36,60 @@ def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -
     ValueError
         ``item.size`` has an extent that is not positive.
     """
+    return _pose(item, model, floor_y)[1]
+
+
+def _pose(item: FurnitureItem, model: FurnitureModel, floor_y: float
+          ) -> tuple[tuple[float, ...], np.ndarray]:
+    """:func:`item_transform`'s matrix and its 3×3 linear part (row by row, floats).
+
+    Worked out on plain floats and made into an array once, as numpy's overhead on a
+    3×3 and a 4×4 outweighs the arithmetic. The linear part is ``rotation @
+    np.diag(scale)`` of :func:`~cga.model.rotation_matrix`: each entry of that product
+    is ``rotation[i][j] * scale[j]`` plus products with zero, at least one of them +0 (a
+    turn about +y has a middle row and column of 0, 1, 0), so it is that term, and +0
+    where the term is zero (``+ 0.0`` makes the -0 of a negative entry times zero +0).
+    The rest is the identity's, so the matrix is the one numpy's product gives, bit for
+    bit (tests/property/test_mesh_arithmetic_props.py)."""
     target = tuple(item.size)
     if len(target) != 3 or not all(extent > 0 for extent in target):
         raise ValueError(f"furniture item {item.name!r}: size {item.size} must be three "
                          f"positive extents (width, height, depth) in metres")
     scale = [1.0 if abs(t - own) <= _SIZE_TOLERANCE else t / own
              for t, own in zip(target, model.size)]
-    matrix = np.eye(4)
-    matrix[:3, :3] = _scaled(rotation_matrix(item.rotation, item.yaw), scale)
-    matrix[:3, 3] = (item.position[0], floor_y + item.elevation, item.position[1])
-    return matrix
+    linear = tuple(r * k + 0.0 for row in rotation_matrix(item.rotation, item.yaw).tolist()
+                   for r, k in zip(row, scale))
+    matrix = np.array([*linear[0:3], float(item.position[0]),
+                       *linear[3:6], float(floor_y + item.elevation),
+                       *linear[6:9], float(item.position[1]),
+                       0.0, 0.0, 0.0, 1.0]).reshape(4, 4)
+    return linear, matrix
 
 
-def _scaled(rotation: np.ndarray, scale: list[float]) -> np.ndarray:
-    """``rotation @ np.diag(scale)`` (each column scaled) with the same floats, without
-    the overhead of a matrix product on 3×3 arrays: each entry of that product is
-    ``rotation[i, j] * scale[j]`` plus products with zero, at least one of them +0 (a
-    turn about +y has a middle row and column of 0, 1, 0), so it is that term, and +0
-    where the term is zero (``+ 0.0`` makes the -0 of a negative entry times zero +0)."""
-    return rotation * scale + 0.0
+class _Posable:
+    """What posing a model needs beside the matrix, the same for every item of it: its
+    joined mesh, that mesh's vertices as homogeneous rows (:func:`~cga.mesh.homogeneous`,
+    read-only) and where each part's vertices end in it."""
+
+    __slots__ = ("joined", "stack", "ends")
+
+    def __init__(self, geometry: ModelGeometry) -> None:
+        self.joined = geometry.joined
+        self.stack = homogeneous(self.joined.vertices)
+        self.stack.flags.writeable = False
+        self.ends = list(accumulate(len(v) for v in geometry.vertices))
+
+
+_POSABLE: "WeakKeyDictionary[ModelGeometry, _Posable]" = WeakKeyDictionary()
+""":class:`_Posable` of each model geometry: the library shares a model among every item
+and build of a process, and a house poses a few dozen models a hundred times."""
+
+
+def _posable(geometry: ModelGeometry) -> _Posable:
+    known = _POSABLE.get(geometry)
+    if known is None:
+        known = _POSABLE[geometry] = _Posable(geometry)
+    return known
 
 
 def _posed(model: FurnitureModel, matrix: np.ndarray
@@ -66,9 +102,10 @@ def _posed(model: FurnitureModel, matrix: np.ndarray
     faces and colours (read-only). The matrix turns and scales by positive factors, so
     the faces keep their winding.
     """
-    source = model.geometry.joined
-    vertices = transform_points(source.vertices, matrix)
-    ends = list(accumulate(len(v) for v in model.geometry.vertices))
+    posable = _posable(model.geometry)
+    source = posable.joined
+    vertices = transform_points(source.vertices, matrix, stack=posable.stack)
+    ends = posable.ends
     pieces = [vertices[start:end] for start, end in zip([0, *ends], ends)]
     parts = tuple(map(MeshArrays, pieces, model.geometry.faces))
     return TriangleMesh(vertices, source.faces, source.vertex_colors), parts
@@ -92,10 +129,10 @@ def item_node(item: FurnitureItem, plan: FloorPlan, library: ModelLibrary) -> Sc
         from .doors import leaf_node
 
         return leaf_node(item, plan, model)
-    matrix = item_transform(item, model, plan.floor_y)
+    linear, matrix = _pose(item, model, plan.floor_y)
     mesh, parts = _posed(model, matrix)
     room = plan.room(item.room)
-    volume = model.volume * _volume_factor(tuple(matrix[:3, :3].ravel().tolist()))
+    volume = model.volume * _volume_factor(linear)
     return SceneNode(
         path=f"floor{plan.index}/{room.label}/furniture/{item.name}",
         kind="furniture",

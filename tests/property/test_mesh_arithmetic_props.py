@@ -14,8 +14,9 @@ import trimesh
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from cga.mesh import _crosses, corner_means, face_normals, mirrors, transform_points
-from cga.meshing.items import _scaled, item_transform
+from cga.mesh import (_crosses, corner_means, face_normals, homogeneous, mirrors,
+                      transform_points)
+from cga.meshing.items import _pose, item_transform
 from cga.model import FurnitureItem, rotation_matrix
 
 coordinate = st.one_of(
@@ -58,6 +59,9 @@ def test_transform_points_is_trimesh_s_bit_for_bit(points, entries, identity):
         matrix[:3] = np.reshape(entries, (3, 4))
     points = np.array(points, dtype=np.float64).reshape(-1, 3)
     assert same_bits(transform_points(points, matrix), trimesh.transform_points(points, matrix))
+    kept = homogeneous(points)
+    assert same_bits(transform_points(points, matrix, stack=kept),
+                     trimesh.transform_points(points, matrix))
 
 
 yaws = st.one_of(st.just(0.0), st.sampled_from([k * math.pi / 2 for k in range(-4, 5)]),
@@ -65,12 +69,24 @@ yaws = st.one_of(st.just(0.0), st.sampled_from([k * math.pi / 2 for k in range(-
 scales = st.one_of(st.just(1.0), st.floats(min_value=1e-3, max_value=1e3))
 
 
+class Model:
+    def __init__(self, size):
+        self.size = size
+
+
 @settings(max_examples=300, deadline=None)
 @given(st.integers(min_value=-5, max_value=8), yaws, st.lists(scales, min_size=3, max_size=3))
 @example(1, -math.pi / 2, [2.0, 1.0, 0.5])  # turns and yaw cancel exactly: a -0 sine
-def test_a_turn_times_a_diagonal_scale_is_the_matrix_product_bit_for_bit(turns, yaw, scale):
+def test_the_pose_s_linear_part_is_the_turn_times_a_diagonal_scale_bit_for_bit(turns, yaw,
+                                                                               scale):
     rotation = rotation_matrix(turns, yaw)
-    assert same_bits(_scaled(rotation, scale), rotation @ np.diag(scale))
+    own = (1.0, 1.0, 1.0)
+    item = FurnitureItem(name="thing", model="thing", room=1, position=(0.5, 0.5),
+                         rotation=turns, size=tuple(scale), yaw=yaw)
+    linear, matrix = _pose(item, Model(own), 0.0)
+    scale = [1.0 if abs(k - 1.0) <= 1e-9 else k for k in scale]  # sizes within 1e-9: unscaled
+    assert same_bits(np.reshape(linear, (3, 3)), rotation @ np.diag(scale))
+    assert same_bits(np.reshape(linear, (3, 3)), matrix[:3, :3])
 
 
 def reference_transform(item: FurnitureItem, size: tuple[float, float, float],
@@ -83,11 +99,6 @@ def reference_transform(item: FurnitureItem, size: tuple[float, float, float],
     matrix[:3, :3] = rotation_matrix(item.rotation, item.yaw) @ np.diag(scale)
     matrix[:3, 3] = (item.position[0], floor_y + item.elevation, item.position[1])
     return matrix
-
-
-class Model:
-    def __init__(self, size):
-        self.size = size
 
 
 extents = st.floats(min_value=0.01, max_value=5.0)
