@@ -79,13 +79,12 @@ def wall_footprints(plan: FloorPlan) -> dict[int, Polygon | MultiPolygon]:
     outside = ~shapely.within(bands, plan.footprint)
     bands[outside] = shapely.intersection(bands[outside], plan.footprint)
     interiors = np.array([r.interior for r in plan.rooms])
-    for b, r in zip(*shapely.STRtree(interiors).query(bands, predicate="overlaps")):
+    for b, r in zip(*_overlapping(bands, interiors)):
         bands[b] = bands[b].difference(interiors[r])
     # A joint claimed twice goes to the earlier wall.
     earlier: list[list[int]] = [[] for _ in walls]
-    for i, j in zip(*shapely.STRtree(bands).query(bands, predicate="overlaps")):
-        if j < i:
-            earlier[i].append(j)
+    for i, j in zip(*_overlapping(bands, bands, earlier=True)):
+        earlier[i].append(j)
     out: dict[int, Polygon | MultiPolygon] = {}
     for i, w in enumerate(walls):
         piece = bands[i]
@@ -155,6 +154,29 @@ def floor_nodes(plan: FloorPlan) -> list[SceneNode]:
                                _mesh(*prism(plan.footprint, top, top + slab)),
                                extras={"floor": plan.index}))
     return nodes
+
+
+def _overlapping(geometries: np.ndarray, others: np.ndarray, *,
+                 earlier: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs ``(i, j)`` where ``geometries[i]`` overlaps ``others[j]`` (with ``earlier``,
+    only those with ``j < i``), in the order ``STRtree(others).query(geometries,
+    predicate="overlaps")`` gives them.
+
+    The tree finds the pairs whose bounding boxes meet; most of them only touch (walls
+    meet their neighbours and rooms edge to edge), and shapes whose boxes share no
+    inner point cannot share one either, so those are dropped before GEOS's overlap test,
+    which the query would make on every pair and which costs most of it. Dropping pairs
+    keeps the order of the rest."""
+    i, j = shapely.STRtree(others).query(geometries)
+    if earlier:
+        keep = j < i
+        i, j = i[keep], j[keep]
+    a, b = shapely.bounds(geometries)[i], shapely.bounds(others)[j]
+    inner = ((np.maximum(a[:, 0], b[:, 0]) < np.minimum(a[:, 2], b[:, 2]))
+             & (np.maximum(a[:, 1], b[:, 1]) < np.minimum(a[:, 3], b[:, 3])))
+    i, j = i[inner], j[inner]
+    keep = shapely.overlaps(geometries[i], others[j])
+    return i[keep], j[keep]
 
 
 def _key(p: tuple[float, float]) -> tuple[float, float]:
