@@ -114,7 +114,7 @@ def scene_json_text(scene: Scene, nodes: Sequence[SceneNode]) -> str:
 def _document_text(document: Any) -> str:
     """``json_text(_clean(document))``, in one walk where it can (:func:`scene_json_text`)."""
     try:
-        return _text(document, _Rounded)
+        return _text(document, _Rounded())
     except (TypeError, ValueError):
         return json_text(_clean(document))
 
@@ -180,10 +180,10 @@ def json_text(document: Any) -> str:
         A value is not JSON data (dict with string keys, list, tuple, string, number,
         bool, None).
     """
-    return _text(document, _Plain)
+    return _text(document, _Plain())
 
 
-def _text(document: Any, style: type[_Plain]) -> str:
+def _text(document: Any, style: _Plain) -> str:
     """The text of ``document`` (:func:`json_text`), its numbers written in ``style``."""
     parts: list[str] = []
     _write(document, "\n", parts, style)
@@ -191,7 +191,7 @@ def _text(document: Any, style: type[_Plain]) -> str:
     return "".join(parts)
 
 
-def _write(value: Any, newline: str, parts: list[str], style: type[_Plain]) -> None:
+def _write(value: Any, newline: str, parts: list[str], style: _Plain) -> None:
     """Append the JSON text of ``value`` to ``parts``; ``newline`` is a line break and
     the indent of the line ``value`` starts on."""
     text = _one_line(value, style)
@@ -202,7 +202,7 @@ def _write(value: Any, newline: str, parts: list[str], style: type[_Plain]) -> N
 
 
 def _write_block(value: dict[Any, Any] | Sequence[Any], newline: str, parts: list[str],
-                 style: type[_Plain]) -> None:
+                 style: _Plain) -> None:
     """Append a dict or list that :func:`_one_line` spreads over lines."""
     if isinstance(value, dict):
         _write_dict(value, newline, parts, style)
@@ -211,7 +211,7 @@ def _write_block(value: dict[Any, Any] | Sequence[Any], newline: str, parts: lis
 
 
 def _write_dict(value: dict[Any, Any], newline: str, parts: list[str],
-                style: type[_Plain]) -> None:
+                style: _Plain) -> None:
     inner = newline + "  "
     lead = "{" + inner
     for key in sorted(value):
@@ -228,7 +228,7 @@ def _write_dict(value: dict[Any, Any], newline: str, parts: list[str],
 
 
 def _write_list(value: Sequence[Any], newline: str, parts: list[str],
-                style: type[_Plain]) -> None:
+                style: _Plain) -> None:
     inner = newline + "  "
     lead = "[" + inner
     for item in value:
@@ -242,7 +242,7 @@ def _write_list(value: Sequence[Any], newline: str, parts: list[str],
     parts.append(newline + "]")
 
 
-def _one_line(value: Any, style: type[_Plain]) -> str | None:
+def _one_line(value: Any, style: _Plain) -> str | None:
     """The text of ``value`` when it is written on one line (a scalar, an empty dict or
     list, a list of only numbers), None for a dict or list spread over lines."""
     kind = type(value)  # exact types first, the commonest first: nearly every value is one
@@ -273,7 +273,7 @@ _PLAIN_NUMBERS = frozenset({float, int})
 """The exact types whose :func:`repr` is their JSON text (NaN and infinities aside)."""
 
 
-def _numbers(values: Sequence[Any], style: type[_Plain]) -> str | None:
+def _numbers(values: Sequence[Any], style: _Plain) -> str | None:
     """A non-empty list of only numbers (points, matrix rows) on one line, None for any
     other list."""
     if _PLAIN_NUMBERS.issuperset(map(type, values)):
@@ -340,21 +340,39 @@ class _Plain:
         return key
 
 
+_FLOATS = frozenset({float})
+"""Lists of exactly these types are written from :class:`_Rounded`'s written floats."""
+
+
 class _Rounded(_Plain):
     """How :func:`scene_json_text` writes numbers and keys: as :func:`json_text` writes
     them once :func:`_clean` has converted them (floats rounded to 1e-6, ``-0.0`` →
     ``0.0``, float and int subclasses as floats and ints). Any other value, and a key
-    not exactly a string, raises :class:`TypeError`: :func:`_clean` has to convert it."""
+    not exactly a string, raises :class:`TypeError`: :func:`_clean` has to convert it.
 
-    @staticmethod
-    def numbers(values: Sequence[float | int]) -> str:
-        return ", ".join([repr(round(v, _DIGITS) + 0.0) if type(v) is float else repr(v)
-                          for v in values])
+    Each distinct float is rounded and written once per document, then looked up: a
+    scene's five thousand floats are some seven hundred values (colours, sizes, a wall's
+    ends again in its rooms and nodes), and rounding one costs more than looking it up.
+    ``-0.0`` and ``0.0`` are one key, and both are written ``0.0``; a NaN is refused
+    before it is kept."""
 
-    @staticmethod
-    def scalar(value: Any) -> str:
+    def __init__(self) -> None:
+        self.written: dict[float, str] = {}
+
+    def numbers(self, values: Sequence[float | int]) -> str:
+        if _FLOATS.issuperset(map(type, values)):
+            try:
+                return ", ".join(map(self.written.__getitem__, values))
+            except KeyError:  # a value not met before (or a NaN, refused)
+                return ", ".join(map(self.scalar, values))
+        return ", ".join([self.scalar(v) if type(v) is float else repr(v) for v in values])
+
+    def scalar(self, value: Any) -> str:
         if isinstance(value, float):
-            return _Plain.scalar(round(float(value), _DIGITS) + 0.0)
+            text = self.written.get(value)
+            if text is None:
+                text = self.written[value] = _Plain.scalar(round(float(value), _DIGITS) + 0.0)
+            return text
         if isinstance(value, int) and not isinstance(value, bool):
             return int.__repr__(int(value))
         if value is None or isinstance(value, bool):

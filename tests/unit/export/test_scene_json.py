@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import enum
 import json
+import math
 import re
 from pathlib import Path
 
@@ -241,3 +242,31 @@ def test_scene_text_in_one_walk_is_the_cleaned_documents_text(document):
             _document_text(document)
     else:
         assert _document_text(document) == expected
+
+
+_FLOATS = (st.floats() | st.sampled_from([-0.0, 0.0, 5e-7, -5e-7, 1e-5, 2.5e-6, 1e16, 1e300,
+                                            5e-324, 0.1234565, 1.0000005, 2.675])
+           | st.floats(-1e-3, 1e-3) | st.integers(-10**9, 10**9).map(lambda n: n * 5e-7))
+
+
+@settings(max_examples=1000, deadline=None)
+@given(st.lists(_FLOATS | st.integers(-10**20, 10**20), min_size=1, max_size=6))
+def test_rounded_floats_are_the_repr_of_the_rounded_floats(values):
+    """Floats written once per value and then looked up are ``repr(round(v, 6) + 0.0)``,
+    in lists, mixed with ints and alone, for every float: tiny, huge, ties, ``-0.0``
+    after ``0.0`` and before it; a NaN or an infinity is the same error."""
+    from cga.export.scene_json import _clean, _document_text
+
+    document = {"list": values, "one": values[0], "each": [[v] for v in values],
+                "alone": [{"v": v} for v in values], "zero": [0.0, -0.0, 0.0]}
+    assert _document_text({"a": -0.0, "b": [0.0, -0.0]}) == '{\n  "a": 0.0,\n  "b": [0.0, 0.0]\n}\n'
+    if all(math.isfinite(v) for v in values):
+        assert _document_text(document) == json_text(_clean(document))
+        assert f"\"one\": {_cleaned_repr(values[0])},\n" in _document_text(document)
+    else:
+        with pytest.raises(ExportError, match="JSON cannot hold"):
+            _document_text(document)
+
+
+def _cleaned_repr(value):
+    return repr(round(value, 6) + 0.0) if type(value) is float else repr(value)
