@@ -41,29 +41,36 @@ def item_transform(item: FurnitureItem, model: FurnitureModel, floor_y: float) -
 
 def _pose(item: FurnitureItem, model: FurnitureModel, floor_y: float
           ) -> tuple[tuple[float, ...], np.ndarray]:
-    """:func:`item_transform`'s matrix and its 3×3 linear part (row by row, floats).
-
-    Worked out on plain floats and made into an array once, as numpy's overhead on a
-    3×3 and a 4×4 outweighs the arithmetic. The linear part is ``rotation @
-    np.diag(scale)`` of :func:`~cga.model.rotation_matrix`: each entry of that product
-    is ``rotation[i][j] * scale[j]`` plus products with zero, at least one of them +0 (a
-    turn about +y has a middle row and column of 0, 1, 0), so it is that term, and +0
-    where the term is zero (``+ 0.0`` makes the -0 of a negative entry times zero +0).
-    The rest is the identity's, so the matrix is the one numpy's product gives, bit for
-    bit (tests/property/test_mesh_arithmetic_props.py)."""
+    """:func:`item_transform`'s matrix and its 3×3 linear part (row by row, floats):
+    :func:`_linear`, and the move, made into an array once (numpy's overhead on a 4×4
+    outweighs the arithmetic); the last row is the identity's."""
     target = tuple(item.size)
     if len(target) != 3 or not all(extent > 0 for extent in target):
         raise ValueError(f"furniture item {item.name!r}: size {item.size} must be three "
                          f"positive extents (width, height, depth) in metres")
-    scale = [1.0 if abs(t - own) <= _SIZE_TOLERANCE else t / own
-             for t, own in zip(target, model.size)]
-    linear = tuple(r * k + 0.0 for row in rotation_matrix(item.rotation, item.yaw).tolist()
-                   for r, k in zip(row, scale))
+    scale = tuple(1.0 if abs(t - own) <= _SIZE_TOLERANCE else t / own
+                  for t, own in zip(target, model.size))
+    linear = _linear(item.rotation, item.yaw, scale)
     matrix = np.array([*linear[0:3], float(item.position[0]),
                        *linear[3:6], float(floor_y + item.elevation),
                        *linear[6:9], float(item.position[1]),
                        0.0, 0.0, 0.0, 1.0]).reshape(4, 4)
     return linear, matrix
+
+
+@lru_cache(maxsize=1024)
+def _linear(quarter_turns: int, yaw: float, scale: tuple[float, float, float]
+            ) -> tuple[float, ...]:
+    """``rotation_matrix(quarter_turns, yaw) @ np.diag(scale)`` row by row, on floats.
+
+    Each entry of that product is ``rotation[i][j] * scale[j]`` plus products with
+    zero, at least one of them +0 (a turn about +y has a middle row and column of 0, 1,
+    0), so it is that term, and +0 where the term is zero (``+ 0.0`` makes the -0 of a
+    negative entry times zero +0): the floats of numpy's product, bit for bit
+    (tests/property/test_mesh_arithmetic_props.py). Most items of a house are unscaled
+    and turned by quarter turns alone, so they share a handful of these."""
+    return tuple(r * k + 0.0 for row in rotation_matrix(quarter_turns, yaw).tolist()
+                 for r, k in zip(row, scale))
 
 
 class _Posable:
