@@ -13,6 +13,7 @@ from functools import lru_cache
 
 import manifold3d
 import numpy as np
+import shapely
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.polygon import orient
 
@@ -35,21 +36,23 @@ def prism(area: Polygon | MultiPolygon, y_low: float,
     sizes = tuple(len(ring) for ring in rings)
     n = sum(sizes)
     caps = np.asarray(manifold3d.triangulate(rings), dtype=np.int64)
-    plan = np.concatenate(rings)
     vertices = np.empty((2, n, 3))
-    vertices[:, :, 0] = plan[:, 0]
-    vertices[:, :, 2] = plan[:, 1]
+    vertices[:, :, ::2] = np.concatenate(rings) if len(rings) > 1 else rings[0]  # x, z
     vertices[0, :, 1], vertices[1, :, 1] = y_low, y_high
     return vertices.reshape(2 * n, 3), np.concatenate([caps, caps[:, ::-1] + n, _sides(sizes)])
 
 
 def oriented_rings(area: Polygon | MultiPolygon) -> list[np.ndarray]:
     """The corners of every ring of ``area`` (not repeating the first), exteriors
-    counter-clockwise and holes clockwise in ``(x, z)``, polygon by polygon."""
+    counter-clockwise and holes clockwise in ``(x, z)``, polygon by polygon.
+
+    Read with ``shapely.get_coordinates``, the coordinates ``ring.coords`` holds without
+    the coordinate sequence made on the way."""
     rings = []
     for polygon in getattr(area, "geoms", [area]):
         polygon = orient(polygon, sign=1.0)
-        rings += [np.asarray(r.coords)[:-1] for r in (polygon.exterior, *polygon.interiors)]
+        rings.append(shapely.get_coordinates(polygon.exterior)[:-1])
+        rings += [shapely.get_coordinates(r)[:-1] for r in polygon.interiors]
     return rings
 
 
