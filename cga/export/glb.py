@@ -151,12 +151,14 @@ def _local_vertices(node: SceneNode, inverse: np.ndarray | None) -> np.ndarray:
 
 
 def _local_transforms(pivots: Sequence[np.ndarray]) -> list[np.ndarray | None]:
-    """The inverse of each pivot, None for the identity (:func:`_local_vertices`): one
-    batched :func:`numpy.linalg.inv` (the same LAPACK solve per matrix as one call each)."""
-    moved = [i for i, pivot in enumerate(pivots) if not np.array_equal(pivot, _IDENTITY)]
+    """The inverse of each pivot, None for the identity (:func:`_local_vertices`): the
+    pivots compared with the identity at once, and one batched :func:`numpy.linalg.inv`
+    (the same LAPACK solve per matrix as one call each)."""
+    stack = np.asarray(pivots, dtype=np.float64).reshape(-1, 4, 4)
+    moved = np.flatnonzero((stack != _IDENTITY).any(axis=(1, 2))).tolist()
     out: list[np.ndarray | None] = [None] * len(pivots)
     if moved:
-        for i, inverse in zip(moved, np.linalg.inv(np.stack([pivots[i] for i in moved]))):
+        for i, inverse in zip(moved, np.linalg.inv(stack[moved])):
             out[i] = inverse
     return out
 
@@ -171,6 +173,18 @@ def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Mat
     digest.update(np.ascontiguousarray(node.mesh.faces, dtype=np.int64).tobytes())
     digest.update(np.ascontiguousarray(node.face_materials, dtype=np.int64).tobytes())
     return digest.digest(), node.materials
+
+
+def _written_matrices(matrices: Sequence[np.ndarray]) -> list[list[float] | None]:
+    """Each 4×4 matrix as a node's glTF ``matrix`` (its columns, as plain floats), or None
+    where it is within 1e-8 of the identity by trimesh's measure (the spread of the
+    difference, ``np.ptp``) and is not written. All at once: per matrix, the reductions
+    and the conversion cost more than the arithmetic."""
+    stack = np.asarray(matrices, dtype=np.float64).reshape(-1, 4, 4)
+    offsets = (stack - _IDENTITY).reshape(-1, 16)
+    near = (offsets.max(axis=1) - offsets.min(axis=1)) < 1e-8
+    columns = stack.transpose(0, 2, 1).reshape(-1, 16).tolist()
+    return [None if close else column for close, column in zip(near.tolist(), columns)]
 
 
 class _Array(NamedTuple):
@@ -475,20 +489,18 @@ class _Gltf:
         self._length = 0
 
     def node(self, name: str, parent: str | None, extras: dict[str, Any],
-             matrix: np.ndarray | None = None, mesh: int | None = None,
+             matrix: list[float] | None = None, mesh: int | None = None,
              extensions: dict[str, Any] | None = None) -> None:
         """Add the node ``name`` under ``parent`` (None: the scene's root), or give the
         node of that name these contents when there is one (a group whose path turns out
-        to be a scene node's too). A matrix within 1e-8 of the identity (by trimesh's
-        measure: the spread of the difference) is not written."""
+        to be a scene node's too). ``matrix`` is as :func:`_written_matrices` gives it
+        (None: not written)."""
         node = self._nodes.setdefault(name, {})
         if parent is not None:
             self._parents[name] = parent
         if mesh is not None:
             node["mesh"] = mesh
-        offset = None if matrix is None else np.asarray(matrix, dtype=np.float64) - _IDENTITY
-        near = offset is None or float(offset.max() - offset.min()) < 1e-8  # np.ptp
-        node["matrix"] = None if near else np.asarray(matrix, dtype=np.float64).T.ravel().tolist()
+        node["matrix"] = matrix
         node["extensions"] = extensions
         node["extras"] = extras
 
@@ -660,6 +672,8 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     names = class_names()
     pivots = [node_pivot(node) for node in nodes]
     inverses = _local_transforms(pivots)
+    moved = [i for i, inverse in enumerate(inverses) if inverse is not None]
+    matrices = dict(zip(moved, _written_matrices([pivots[i] for i in moved])))
     local = [_local_vertices(node, inverse) for node, inverse in zip(nodes, inverses)]
     sources = [_source_key(node, vertices) for node, vertices in zip(nodes, local)]
     first: dict[tuple[bytes, tuple[Material, ...]], int] = {}
@@ -690,8 +704,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
                              primitives)
             if source is not None:
                 made_from[source] = mesh
-        pivot = None if inverses[i] is None else pivots[i]  # the identity is not written
-        gltf.node(node.path, parent, extras, matrix=pivot, mesh=mesh)
+        gltf.node(node.path, parent, extras, matrix=matrices.get(i), mesh=mesh)
         made.add(node.path)
     lights = _add_lights(gltf, scene, root, groups, made)
     return gltf.glb(json_safe({"generator": "cga", "name": scene.name, "seed": scene.seed,
@@ -703,10 +716,10 @@ def _add_lights(gltf: _Gltf, scene: Scene, root: str, groups: Mapping[str, dict[
     """A node per ceiling light (``floor0/room3_Office/light0``) under its room, pointing
     at its ``KHR_lights_punctual`` light; returns the lights' definitions."""
     out = []
-    for k, light in enumerate(scene.lights):
+    places = np.tile(_IDENTITY, (len(scene.lights), 1, 1))
+    places[:, :3, 3] = np.reshape([light.position for light in scene.lights], (-1, 3))
+    for k, (light, matrix) in enumerate(zip(scene.lights, _written_matrices(places))):
         parent = _parent(gltf, light.name, root, groups, made)
-        matrix = np.eye(4)
-        matrix[:3, 3] = light.position
         extras = json_safe({"kind": "light", "floor": light.floor, "room": light.room,
                             "lumens": light.lumens, "temperature": light.temperature})
         gltf.node(light.name, parent, extras, matrix=matrix,

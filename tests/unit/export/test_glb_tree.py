@@ -259,3 +259,49 @@ def test_json_safe_is_its_contract_spelled_out(value):
 
     got, expected = json_safe(value), _plain(value)
     assert got == expected and json.dumps(got) == json.dumps(expected)
+
+
+_ENTRIES = (st.floats() | st.sampled_from([0.0, -0.0, 1.0, 1.0 + 1e-9, 1e-9, 5e-9, 1e-8, -1e-8,
+                                           float("nan"), float("inf")]))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.lists(_ENTRIES, min_size=16, max_size=16)
+                | st.lists(st.sampled_from([0.0, 1e-9, -3e-9, 2e-8]), min_size=16, max_size=16)
+                .map(lambda d: (np.eye(4) + np.reshape(d, (4, 4))).ravel().tolist())
+                | st.just(np.eye(4).ravel().tolist()), max_size=5))
+def test_matrices_are_written_and_inverted_as_each_alone(entries):
+    """All matrices at once are written as each was alone (its columns, or None within
+    1e-8 of the identity by ``np.ptp``), and the pivots that are not the identity
+    (``np.array_equal``) are the ones inverted: NaN, infinities and ``-0.0`` included."""
+    from cga.export.glb import _local_transforms, _written_matrices
+
+    matrices = [np.reshape(e, (4, 4)) for e in entries]
+    expected = []
+    for matrix in matrices:
+        offset = np.asarray(matrix, dtype=np.float64) - np.eye(4)
+        near = float(offset.max() - offset.min()) < 1e-8
+        expected.append(None if near else np.asarray(matrix, dtype=np.float64).T.ravel().tolist())
+    assert json.dumps(_written_matrices(matrices)) == json.dumps(expected)
+    with np.errstate(all="ignore"):
+        try:
+            inverses = _local_transforms(matrices)
+        except np.linalg.LinAlgError:  # a singular pivot, as when each was compared alone
+            inverses = None
+        try:
+            expected = _each_inverse(matrices)
+        except np.linalg.LinAlgError:
+            expected = None
+    assert (inverses is None) == (expected is None)
+    for got, want in zip(inverses or [], expected or [], strict=True):
+        assert (got is None and want is None) or np.array_equal(got, want, equal_nan=True)
+
+
+def _each_inverse(pivots):
+    """The pivots' inverses as the writer took them, comparing each with the identity."""
+    moved = [i for i, pivot in enumerate(pivots) if not np.array_equal(pivot, np.eye(4))]
+    out = [None] * len(pivots)
+    if moved:
+        for i, inverse in zip(moved, np.linalg.inv(np.stack([pivots[i] for i in moved]))):
+            out[i] = inverse
+    return out
