@@ -66,15 +66,13 @@ def wall_footprints(plan: FloorPlan) -> dict[int, Polygon | MultiPolygon]:
     STRtrees: O(n log n) for n walls.
     """
     t = plan.settings.wall_thickness
-    ends: dict[tuple[float, float], list[Wall]] = {}
-    for w in plan.walls:
-        for p in (w.start, w.end):
-            ends.setdefault(_key(p), []).append(w)
-    continued = {w.id: [_continuation(w, p, ends) for p in (w.start, w.end)] for w in plan.walls}
+    at = _joints(plan.walls)
+    continued = {w.id: [_continuation(w, joint) for joint in at[w.id]] for w in plan.walls}
     line = _line_lengths(plan.walls, continued)
     walls = sorted(plan.walls, key=lambda w: (not w.outer, -line[w.id], -w.length, w.id))
-    bands = _bands([w.band_corners(*(_reach(w, end, ends, t) if continued[w.id][k] is None
-                                     else 0.0 for k, end in enumerate(("start", "end"))))
+    bands = _bands([w.band_corners(*(_reach(w, end, at[w.id][k], t)
+                                     if continued[w.id][k] is None else 0.0
+                                     for k, end in enumerate(("start", "end"))))
                     for w in walls])
     outside = ~shapely.within(bands, plan.footprint)
     bands[outside] = shapely.intersection(bands[outside], plan.footprint)
@@ -183,12 +181,25 @@ def _key(p: tuple[float, float]) -> tuple[float, float]:
     return (round(p[0], 6), round(p[1], 6))
 
 
-def _continuation(wall: Wall, point: tuple[float, float],
-                  ends: dict[tuple[float, float], list[Wall]]) -> Wall | None:
-    """The wall that goes on in a straight line from ``wall`` at ``point`` with the same
-    band (both inner or both outer), if any."""
+def _joints(walls: tuple[Wall, ...]) -> dict[int, tuple[list[Wall], list[Wall]]]:
+    """For each wall (by id), the walls meeting at its start and at its end (itself
+    among them), in wall order: ends are the same joint when their :func:`_key` is.
+    Each end's key is worked out once (``round`` costs more than the rest of a wall's
+    joint bookkeeping)."""
+    joints: dict[tuple[float, float], list[Wall]] = {}
+    at = {w.id: (joints.setdefault(_key(w.start), []), joints.setdefault(_key(w.end), []))
+          for w in walls}
+    for w in walls:
+        for joint in at[w.id]:
+            joint.append(w)
+    return at
+
+
+def _continuation(wall: Wall, joint: list[Wall]) -> Wall | None:
+    """The wall that goes on in a straight line from ``wall`` at one of its ends (the
+    walls there: ``joint``) with the same band (both inner or both outer), if any."""
     d = wall.unit()
-    for other in ends[_key(point)]:
+    for other in joint:
         if other is not wall and other.outer == wall.outer:
             e = other.unit()
             if abs(d[0] * e[1] - d[1] * e[0]) < 1e-9:
@@ -217,11 +228,10 @@ def _line_lengths(walls: tuple[Wall, ...], continued: dict[int, list[Wall | None
     return out
 
 
-def _reach(wall: Wall, end: str, ends: dict[tuple[float, float], list[Wall]], t: float) -> float:
-    """How far ``wall`` reaches past its ``end`` ("start" or "end") into the joint there,
-    when no collinear wall continues it."""
-    point = getattr(wall, end)
-    others = [o for o in ends[_key(point)] if o is not wall]
+def _reach(wall: Wall, end: str, joint: list[Wall], t: float) -> float:
+    """How far ``wall`` reaches past its ``end`` ("start" or "end") into the joint there
+    (the walls meeting there: ``joint``), when no collinear wall continues it."""
+    others = [o for o in joint if o is not wall]
     if not wall.outer:
         return 0.0 if any(o.outer for o in others) else t / 2
     # Outer walls run counter-clockwise around the footprint: a right turn at the
