@@ -244,8 +244,9 @@ def _parts_of(model: object) -> _Parts:
 
 class _ItemDressings:
     """What :func:`_furniture` has worked out in one :func:`dress_nodes` call: per model and
-    room, the materials, the model's face count and the dressing; per look (model and
-    material names), the dressing items of any room dressed alike share."""
+    room (per model alone in a neutral build), the materials, the model's face count and
+    the dressing; per look (model and material names), the dressing items of any room
+    dressed alike share."""
 
     def __init__(self) -> None:
         self.by_room: dict[tuple[str, ...], tuple[list[Material], int, _Dressing]] = {}
@@ -258,13 +259,15 @@ def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette, models
     part each face belongs to.
 
     Items of one model in one room (the chairs of a room) have the same materials, so
-    they are looked up once per model and room; items dressed alike (in a neutral
-    build, every item of the model) share one answer, kept by model and material
-    names; their ``face_materials`` is one read-only array."""
+    they are looked up once per model and room, and once per model in a neutral build
+    (whose looks depend on neither the room nor the seed, :meth:`Palette.parts`); items
+    dressed alike (in a neutral build, every item of the model) share one answer, kept
+    by model and material names; their ``face_materials`` is one read-only array."""
     item = node.item
     assert item is not None
     key = (f"floor{plan.index}", f"room{item.room}") if plan is not None else ()
-    known = dressed.by_room.get((item.model, *key))
+    place = (item.model,) if palette.mode == "neutral" else (item.model, *key)
+    known = dressed.by_room.get(place)
     if known is None:
         parts, index = _model_parts(models.get(item.model))  # type: ignore[attr-defined]
         materials = palette.parts(item.model, parts, key=key)
@@ -272,8 +275,7 @@ def _furniture(node: SceneNode, plan: FloorPlan | None, palette: Palette, models
         if look not in dressed.by_look:
             dressing = dressed.by_look[look] = _compact(materials, index)
             dressing[1].flags.writeable = False
-        known = dressed.by_room[(item.model, *key)] = (materials, len(index),
-                                                       dressed.by_look[look])
+        known = dressed.by_room[place] = (materials, len(index), dressed.by_look[look])
     materials, count, dressing = known
     if count != len(node.mesh.faces):  # a mesh not made from the model's parts
         return _compact(materials[:1], np.zeros(len(node.mesh.faces), dtype=np.int64))
