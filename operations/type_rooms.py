@@ -29,6 +29,7 @@ largest.
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Literal
@@ -56,6 +57,10 @@ __all__ = ["DOOR_POSITIONS", "DoorPosition", "MAX_REDRAWS", "CIRCULATION_TYPE", 
 
 MAX_REDRAWS = 12
 """How many times a floor without a typing is re-drawn before the typing gives up."""
+
+DOOR_RETRIES = 4
+"""How many typings of one layout are tried while their doors cannot reach every room
+(before the layout is re-drawn, or the typing gives up)."""
 
 CIRCULATION_TYPE = "Corridor"
 """The type of carved corridors when the table has no circulation rule."""
@@ -112,17 +117,28 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         any wall; the ground floor has no outer wall that takes a front door; or, with
         ``strict``, the rules leave a room unreachable.
     """
+    from .roomtyping.room_graph import NoDoorsError
     from .roomtyping.targets import target_areas
 
     if door_position not in DOOR_POSITIONS:
         raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
     first_error: NoSolutionError | None = None
+    door_error: NoSolutionError | None = None  # the last layout typed but left without doors
+    last_resort: FloorPlan | None = None  # typed, a room no rule takes behind a private one
     redraws = 0
     fallback: FloorPlan | None = None  # typed, but with rooms no rule takes
     for attempt in range(MAX_REDRAWS + 1):
         try:
-            typed = _type_layout(plan, table, rng, units=units, strict=strict,
-                                 door_position=door_position, door_state=door_state)
+            typed = _typed_with_doors(plan, table, rng, units=units, strict=strict,
+                                      door_position=door_position, door_state=door_state)
+        except NoSolutionError as error:
+            first_error = first_error or error
+            if isinstance(error, NoDoorsError):
+                door_error = error
+                last_resort = last_resort or _typed_through_private(
+                    plan, table, rng, units=units, strict=strict, door_position=door_position,
+                    door_state=door_state, redrawn=(attempt, first_error))
+        else:
             leftover = [r.id for r in typed.rooms if r.type == DEFAULT_TYPE]
             if not (leftover and table.has_access):
                 return _redrawn(typed, attempt, first_error, table, units)
@@ -130,8 +146,6 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             first_error = first_error or NoSolutionError(
                 f"room{'s' if len(leftover) > 1 else ''} {', '.join(map(str, leftover))} fit no "
                 "rule of the table")
-        except NoSolutionError as error:
-            first_error = first_error or error
         recipe = plan.layout
         if recipe is None or attempt == MAX_REDRAWS:
             break
@@ -143,11 +157,16 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         redraws += 1
     if fallback is not None:
         return fallback
+    if last_resort is not None:
+        return last_resort
     assert first_error is not None
     reasons = list(first_error.reasons)
     if redraws:
         reasons.append(f"the floor was re-drawn {redraws} time{'s' if redraws > 1 else ''} "
                        "(cuts aimed at the table's areas) without a layout the rules can type")
+        if door_error is not None and door_error is not first_error:
+            reasons.append(f"a re-drawn layout was typed, but {str(door_error).splitlines()[0]}"
+                           + "".join(f"; {r}" for r in door_error.reasons[:2]))
     reasons += unit_reasons(table, units, _free_area(plan))
     if reasons == first_error.reasons:
         raise first_error
@@ -203,10 +222,83 @@ def _free_area(plan: FloorPlan) -> float:
     return sum(r.area for r in plan.rooms if not r.circulation)
 
 
+def _typed_with_doors(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
+                      units: float, strict: bool, door_position: DoorPosition,
+                      door_state: str) -> FloorPlan:
+    """:func:`_type_layout`, typed afresh up to :data:`DOOR_RETRIES` times while its
+    doors cannot reach every room the way the rules allow (a room no rule takes beside
+    bedrooms only): the typing's draws put the rooms elsewhere, the layout stays."""
+    from .roomtyping.room_graph import NoDoorsError
+
+    for attempt in range(DOOR_RETRIES):
+        try:
+            return _type_layout(plan, table, rng, units=units, strict=strict,
+                                door_position=door_position, door_state=door_state)
+        except NoDoorsError:
+            if attempt == DOOR_RETRIES - 1:
+                raise
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def _typed_through_private(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
+                           units: float, strict: bool, door_position: DoorPosition,
+                           door_state: str, redrawn: tuple[int, NoSolutionError | None]
+                           ) -> FloorPlan | None:
+    """The typing's last resort for a layout whose doors cannot reach a room no rule
+    takes except through a private room: typed again with such doors allowed
+    (:func:`~.roomtyping.room_graph.access_pairs`), a warning for each (None: that does
+    not type either). Kept only when no re-drawn layout does better."""
+    try:
+        typed = _type_layout(plan, table, rng, units=units, strict=strict,
+                             door_position=door_position, door_state=door_state,
+                             through_private=True)
+    except NoSolutionError:
+        return None
+    notes = [Diagnostic("warning", _STAGE, (
+        f"{_describe(typed.room(room))} is reached only through {_describe(typed.room(gate))}: "
+        "no layout or typing tried gives it a way in that avoids private rooms (make_floor's "
+        "corridor= would)"), floor=typed.index, room=room)
+        for room, gate in sorted(_behind_private(typed).items())
+        if typed.room(room).type == DEFAULT_TYPE]  # others only as enteredFrom allows
+    typed = typed.with_changes(diagnostics=typed.diagnostics + tuple(notes))
+    return _redrawn(typed, *redrawn, table, units)
+
+
+def _behind_private(typed: FloorPlan) -> dict[int, int]:
+    """Room → the first private room on its way from the entry, for every room the doors
+    reach only through a private one (a breadth-first search that stops at private
+    rooms, then one that goes through them)."""
+    neighbours: dict[int, list[int]] = {room.id: [] for room in typed.rooms}
+    for door in typed.doors:
+        if OUTSIDE not in door.rooms:
+            neighbours[door.rooms[0]].append(door.rooms[1])
+            neighbours[door.rooms[1]].append(door.rooms[0])
+    assert typed.entry is not None
+    free = {typed.entry}
+    frontier = [typed.entry]
+    while frontier:
+        room = frontier.pop()
+        for other in neighbours[room]:
+            if other not in free and not typed.room(other).private:
+                free.add(other)
+                frontier.append(other)
+    gates = {other: other for room in sorted(free) for other in neighbours[room]
+             if other not in free}  # private rooms the free part opens into
+    queue = deque(sorted(gates))
+    while queue:
+        room = queue.popleft()
+        for other in neighbours[room]:
+            if other not in free and other not in gates:
+                gates[other] = gates[room]
+                queue.append(other)
+    return {room: gate for room, gate in gates.items() if room != gate}
+
+
 def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
                  units: float, strict: bool, door_position: Literal["center", "random"],
-                 door_state: str) -> FloorPlan:
-    """:func:`type_plan` on one layout, without re-draws."""
+                 door_state: str, through_private: bool = False) -> FloorPlan:
+    """:func:`type_plan` on one layout, without re-draws; ``through_private``: see
+    :func:`~.roomtyping.room_graph.access_pairs`."""
     from .roomtyping.assign import assign_types
     from .roomtyping.backtrack import RoomSet
     from .roomtyping.doors import door_centre, door_spans
@@ -251,7 +343,8 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     front_room, entry, entry_notes = _entry(typed, table, typing, ids, sites, wants_front_door)
     notes += entry_notes
     if table.has_access:  # one door into every room, the stair core's included
-        pairs, extra = access_pairs(typed.rooms, sites, table, entry=entry), []
+        pairs, extra = access_pairs(typed.rooms, sites, table, entry=entry,
+                                    through_private=through_private), []
         stair_pair = next((p for p in pairs if typed.core_room in p), None)
     else:
         pairs = rule_pairs(types, sites, table)

@@ -33,10 +33,15 @@ from .rules import RuleTable, TypeRule
 if TYPE_CHECKING:  # pragma: no cover
     import networkx as nx
 
-__all__ = ["DoorSites", "door_sites", "rule_pairs", "reachability_pairs", "access_pairs",
-           "room_graph"]
+__all__ = ["DoorSites", "NoDoorsError", "door_sites", "rule_pairs", "reachability_pairs",
+           "access_pairs", "room_graph"]
 
 Pair = tuple[int, int]
+
+
+class NoDoorsError(NoSolutionError):
+    """The rooms are typed, but no doors the rules allow reach every room from the entry
+    (a re-drawn layout may still do; the typing says why when none does)."""
 
 
 @dataclass(frozen=True)
@@ -125,7 +130,7 @@ def reachability_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: Door
 
     Raises
     ------
-    NoSolutionError
+    NoDoorsError
         Some room shares no door-capable wall with the rest of the floor, so no set of
         doors reaches it.
     """
@@ -153,7 +158,7 @@ def reachability_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: Door
             added.append((a, b))
     cut_off = sorted(r for r in degree if components[r] != components[entry])
     if cut_off:
-        raise NoSolutionError(
+        raise NoDoorsError(
             f"room{'s' if len(cut_off) > 1 else ''} {', '.join(map(str, cut_off))} cannot be "
             "reached from the entry: no wall shared with the rest of the floor is long enough "
             "for a door", [_too_short(room, rooms, sites) for room in cut_off])
@@ -189,20 +194,22 @@ def room_graph(plan: FloorPlan, doors: Sequence[Door]) -> nx.Graph:
 
 
 def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
-                 entry: int) -> list[Pair]:
+                 entry: int, through_private: bool = False) -> list[Pair]:
     """The doors of a table with access rules: one door into every room (DESIGN §11).
 
     Every room is entered once, from the room it is reached from on the cheapest way
     from ``entry``: a door from ``a`` into ``b`` needs a door-capable wall and ``b``'s rule
     to allow entering from ``a``'s type; ``a`` must be the entry, circulation, a room its
     rule lets others pass through, or a private room that ``b`` lists explicitly in
-    ``enteredFrom`` (an en-suite bathroom). Steps out of circulation cost 1, out of other
+    ``enteredFrom`` (an en-suite bathroom). A room no rule takes (the default type) is
+    entered from any room but a private one: a bedroom is never the way into it, unless
+    ``through_private`` (the typing's last resort, with a warning). Steps out of circulation cost 1, out of other
     rooms 4, so rooms open onto the hall or corridor whenever they can. The doors form a
     tree: no room is entered twice, and adjacency alone makes no door.
 
     Raises
     ------
-    NoSolutionError
+    NoDoorsError
         Some room cannot be entered from any room the rules allow on a way from the
         entry; the reasons name it and what it may be entered from.
 
@@ -228,8 +235,8 @@ def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
         if by_id[b].circulation and not passable(a):
             return False  # a hall or stair landing entered through a bedroom makes it a passage
         rb = rule(b)
-        if rb is None:
-            return True
+        if rb is None:  # a room no rule takes is entered like any room, never via a bedroom
+            return through_private or passable(a)
         if not rb.may_be_entered_from(by_id[a].type or ""):
             return False
         return passable(a) or (rb.entered_from is not None and by_id[a].type in rb.entered_from)
@@ -258,11 +265,12 @@ def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
         reasons = []
         for room in missing:
             r = rule(room)
-            allowed = ", ".join(r.entered_from or ()) if r and r.entered_from else "its neighbours"
+            allowed = (", ".join(r.entered_from) if r and r.entered_from else
+                       "any neighbour but a private room" if r is None else "its neighbours")
             beside = ", ".join(f"room {b} ({by_id[b].type})" for b in sorted(neighbours[room]))
             reasons.append(f"room {room} ({by_id[room].type}) may be entered from {allowed}; "
                            f"its door-capable neighbours are {beside or 'none'}")
-        raise NoSolutionError(f"the access rules of {table.file} leave room"
+        raise NoDoorsError(f"the access rules of {table.file} leave room"
                               f"{'s' if len(missing) > 1 else ''} "
                               f"{', '.join(map(str, missing))} without a door", reasons)
     return sorted(tuple(sorted((a, b))) for b, a in parent.items())  # type: ignore[misc]

@@ -46,6 +46,10 @@ def read_rules(path: str | Path) -> list[dict]:
             "outside": cell["isoutsideconnected"].lower() in ("1", "true"),
             "appearance": int(float(cell["appearance"])),
             "optional": cell["additionroom"].lower() in ("1", "true"),
+            # access columns (docs/room_typing.md): private rooms are nobody's way in
+            "private": cell.get("passthrough", "").lower() in ("0", "false"),
+            "entered_from": {n.strip().lower() for n in cell.get("enteredfrom", "").split(",")
+                             if n.strip()},
         })
     return rules
 
@@ -140,6 +144,24 @@ def validate_typed_plan(plan, rules_path: str | Path, *, units: float = 1.0,
     start = OUTSIDE if front_door else entry
     reached = nx.node_connected_component(graph, start)
     assert set(rooms) <= reached, f"unreachable rooms: {sorted(set(rooms) - reached)}"
+
+    # a private room (passThrough false) is the only way into no other room, but the
+    # rooms that name its type in enteredFrom (an en-suite bathroom behind a bedroom)
+    by_type = {r["type"]: r for r in rules}
+    for room in rooms.values():
+        if not by_type.get(room.type, {}).get("private") or room.id == start:
+            continue
+        rest = graph.subgraph(n for n in graph if n != room.id)
+        behind = reached - {room.id} - nx.node_connected_component(rest, start)
+        for other in sorted(behind):
+            allowed = by_type.get(rooms[other].type, {}).get("entered_from", set())
+            # the typing's documented last resort for a room no rule takes: warned
+            warned = rooms[other].type == DEFAULT_TYPE and any(
+                d.level == "warning" and d.room == other and "reached only through" in d.message
+                for d in plan.diagnostics)
+            assert room.type.lower() in allowed or warned, (
+                f"{room.type} room {room.id} is the only way into {rooms[other].type} "
+                f"room {other}")
 
     # the room graph is the door graph, with types
     room_graph = plan.room_graph

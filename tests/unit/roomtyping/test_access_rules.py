@@ -106,3 +106,24 @@ def test_circulation_is_never_entered_through_a_private_room():
         access_pairs(rooms, behind_the_bedroom, rules, entry=0)
     beside_the_hall = DoorSites(inner={(0, 1): (), (1, 2): (), (0, 2): ()}, outer={})
     assert access_pairs(rooms, beside_the_hall, rules, entry=0) == [(0, 1), (0, 2)]
+
+
+def test_a_room_no_rule_takes_is_never_entered_through_a_private_room():
+    """A leftover room (the default type, no rule) behind a bedroom would make the
+    bedroom the way into it: its door comes from the hall when the hall adjoins it, and
+    with only private neighbours the layout has no doors (the typing re-draws it)."""
+    from shapely.geometry import box
+
+    from cga.model import Room
+    from cga.operations.roomtyping.room_graph import DoorSites, NoDoorsError, access_pairs
+
+    rules = table(EN_SUITE)
+    rooms = [Room(0, box(0, 0, 10, 1.6), box(0, 0, 10, 1.6), "Hall", circulation=True),
+             Room(1, box(0, 1.6, 5, 5), box(0, 1.6, 5, 5), "Bedroom", private=True),
+             Room(2, box(0, 5, 3, 8), box(0, 5, 3, 8), "Commonroom")]
+    both = DoorSites(inner={(0, 1): (), (1, 2): (), (0, 2): ()}, outer={})
+    assert access_pairs(rooms, both, rules, entry=0) == [(0, 1), (0, 2)]
+    behind_the_bedroom = DoorSites(inner={(0, 1): (), (1, 2): ()}, outer={})
+    with pytest.raises(NoDoorsError, match="room 2 .*any neighbour but a private room"):
+        access_pairs(rooms, behind_the_bedroom, rules, entry=0)
+
