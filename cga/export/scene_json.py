@@ -214,9 +214,16 @@ def _write_dict(value: dict[Any, Any], newline: str, parts: list[str],
                 style: _Plain) -> None:
     inner = newline + "  "
     lead = "{" + inner
+    names = style.names
     for key in sorted(value):
         item = value[key]
-        head = lead + _string(key if type(key) is str else style.key(key)) + ": "
+        if type(key) is str:
+            name = names.get(key)
+            if name is None:
+                name = names[key] = _string(key) + ": "
+        else:  # not kept: a subclass equal to a string is not written as that string
+            name = _string(style.key(key)) + ": "
+        head = lead + name
         text = _one_line(item, style)  # most values: one append, no call further down
         if text is not None:
             parts.append(head + text)
@@ -295,7 +302,13 @@ _string = encode_basestring
 
 
 class _Plain:
-    """How :func:`json_text` writes numbers and keys: as :mod:`json` does."""
+    """How :func:`json_text` writes numbers and keys: as :mod:`json` does.
+
+    ``names`` holds the text of each key written so far (``"name": ``): a document
+    writes its few hundred keys thousands of times."""
+
+    def __init__(self) -> None:
+        self.names: dict[str, str] = {}
 
     @staticmethod
     def numbers(values: Sequence[float | int]) -> str:
@@ -357,6 +370,7 @@ class _Rounded(_Plain):
     before it is kept."""
 
     def __init__(self) -> None:
+        super().__init__()
         self.written: dict[float, str] = {}
 
     def numbers(self, values: Sequence[float | int]) -> str:

@@ -270,3 +270,15 @@ def test_rounded_floats_are_the_repr_of_the_rounded_floats(values):
 
 def _cleaned_repr(value):
     return repr(round(value, 6) + 0.0) if type(value) is float else repr(value)
+
+
+def test_keys_written_again_are_written_alike():
+    """A key's text is kept once written; a key equal to a string but not one (an enum of
+    strings) is not written as that string, before or after it."""
+    from cga.export.scene_json import _clean, _document_text
+
+    for document in ({"a": {"a": 1, "é\n": 2}, "b": [{"a": 3, "é\n": 4}], "c": {_Key.a: 5}},
+                     {"a": {_Key.a: 1}, "b": {"a": 2}}):
+        assert _document_text(document) == json_text(_clean(document))
+    assert json_text({"a": {"a": 1, "é\n": 2}, "b": [{"a": 3}]}) == _stdlib_text(
+        {"a": {"a": 1, "é\n": 2}, "b": [{"a": 3}]})
