@@ -177,17 +177,19 @@ def test_splitting_meshes_by_material_is_numpy_unique_of_each_material_s_faces(m
 
 
 def test_local_vertices_are_those_of_each_pivot_s_own_inverse(glb):
-    """The batched inverse of the pivots puts every node's vertices where the inverse of
-    its own pivot does (structure, at the identity, is not moved at all)."""
+    """The batched inverse of the pivots, and the rounding of all nodes at once, put
+    every node's vertices where the inverse of its own pivot and its own rounding do
+    (structure, at the identity, is not moved at all)."""
     import cga.export.glb as glb_module
 
     _, nodes, _, _ = glb
     pivots = [glb_module.node_pivot(node) for node in nodes]
-    for node, got in zip(nodes, glb_module._local_transforms(pivots)):
+    local = glb_module._local_vertices(nodes, glb_module._local_transforms(pivots))
+    for node, got in zip(nodes, local, strict=True):
         inverse = np.linalg.inv(glb_module.node_pivot(node))
         vertices = np.asarray(node.mesh.vertices, dtype=float)
         expected = np.round(vertices @ inverse[:3, :3].T + inverse[:3, 3], 6) + 0.0
-        assert np.array_equal(glb_module._local_vertices(node, got), expected), node.path
+        assert np.array_equal(got, expected) and got.dtype == expected.dtype, node.path
 
 
 @settings(max_examples=100, deadline=None)

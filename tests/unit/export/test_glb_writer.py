@@ -34,6 +34,15 @@ DEMOS = Path(__file__).resolve().parents[3] / "demos"
 TRIMESH = "https://github.com/mikedh/trimesh"
 
 
+def local_vertices(node, inverse):
+    """The node's vertices in its pivot's frame (``inverse``, None: the identity) on a
+    micrometre grid, the node alone."""
+    vertices = np.asarray(node.mesh.vertices, dtype=float)
+    if inverse is not None:
+        vertices = vertices @ inverse[:3, :3].T + inverse[:3, 3]
+    return np.round(vertices, 6) + 0.0
+
+
 def trimesh_normals(meshes):
     """The vertex normals as the writer computed them with trimesh's functions: trimesh's
     angle-weighted mean (over all meshes at once), and where that has no length the normal
@@ -106,7 +115,7 @@ def trimesh_glb(scene: Scene, nodes) -> bytes:
         return trimesh.visual.TextureVisuals(material=looks[material])
 
     pivots = [glb.node_pivot(node) for node in nodes]
-    local = [glb._local_vertices(node, inverse)
+    local = [local_vertices(node, inverse)
              for node, inverse in zip(nodes, glb._local_transforms(pivots))]
     normals = trimesh_normals([(v, np.asarray(n.mesh.faces, dtype=np.int64))
                                for v, n in zip(local, nodes)])
