@@ -170,16 +170,19 @@ def _local_transforms(pivots: Sequence[np.ndarray]) -> list[np.ndarray | None]:
     return out
 
 
-def _source_key(node: SceneNode, vertices: np.ndarray) -> tuple[bytes, tuple[Material, ...]] | None:
+_Source = tuple[bytes, bytes, bytes, tuple[Material, ...]]
+"""A dressed node's local vertices, faces and face materials (their bytes) and materials."""
+
+
+def _source_key(node: SceneNode, vertices: np.ndarray) -> _Source | None:
     """What a dressed node's glTF mesh is made of (local vertices, faces, each face's
     material): nodes with equal keys get equal meshes, so the mesh is made once (the
-    instances of a model share it). None for a node without materials."""
+    instances of a model share it). None for a node without materials. The arrays' bytes
+    themselves: a dict hashes them once, where a digest of each cost twice as much."""
     if not node.materials or node.face_materials is None:
         return None
-    digest = hashlib.sha1(np.ascontiguousarray(vertices).tobytes())
-    digest.update(np.ascontiguousarray(node.mesh.faces, dtype=np.int64).tobytes())
-    digest.update(np.ascontiguousarray(node.face_materials, dtype=np.int64).tobytes())
-    return digest.digest(), node.materials
+    return (vertices.tobytes(), np.asarray(node.mesh.faces, dtype=np.int64).tobytes(),
+            np.asarray(node.face_materials, dtype=np.int64).tobytes(), node.materials)
 
 
 def _written_matrices(matrices: Sequence[np.ndarray]) -> list[list[float] | None]:
@@ -674,7 +677,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     groups = _group_extras(scene)
     made: set[str] = set()
     seen: set[str] = set()
-    made_from: dict[tuple[bytes, tuple[Material, ...]], int | None] = {}  # _source_key → mesh
+    made_from: dict[_Source, int | None] = {}  # _source_key → mesh
     instances = instance_ids(nodes)
     names = class_names()
     pivots = [node_pivot(node) for node in nodes]
@@ -683,7 +686,7 @@ def scene_as_glb(scene: Scene, nodes: Sequence[SceneNode]) -> bytes:
     matrices = dict(zip(moved, _written_matrices([pivots[i] for i in moved])))
     local = _local_vertices(nodes, inverses)
     sources = [_source_key(node, vertices) for node, vertices in zip(nodes, local)]
-    first: dict[tuple[bytes, tuple[Material, ...]], int] = {}
+    first: dict[_Source, int] = {}
     meshed = [i for i, source in enumerate(sources)
               if source is None or first.setdefault(source, i) == i]
     faces = {i: np.asarray(nodes[i].mesh.faces, dtype=np.int64) for i in meshed}
