@@ -42,7 +42,7 @@ from cga.shape import Shape
 from cga.table_units import describe_unit, unit_note
 
 from cga.operation import CheckContext, Child, Operation, OperationContext, Param
-from .roomtyping.door_states import DOOR_STATE_CHOICES, with_door_states
+from .roomtyping.door_states import DOOR_STATE_CHOICES, clear_leaves, with_door_states
 from .roomtyping.rules import DEFAULT_TYPE, RuleTable, load_rule_table
 
 if TYPE_CHECKING:
@@ -372,7 +372,8 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, kind))
             if reason == "reachability":
                 notes.append(_reachability_note(typed, pair, table))
-    doors = with_door_states(doors, door_state, rng)
+    doors, turned_back = clear_leaves(typed, with_door_states(doors, door_state, rng))
+    notes += [Diagnostic("info", _STAGE, text, floor=plan.index) for text in turned_back]
     result = typed.with_changes(walls=tuple(walls[w.id] for w in typed.walls),
                                 windows=windows, doors=tuple(doors),
                                 diagnostics=plan.diagnostics + tuple(notes))
