@@ -243,7 +243,10 @@ def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
         gone.add(door.id)
         if any(d.id in gone and set(d.rooms) == set(rooms)
                and Point(d.position).distance(Point(door.position)) < d.width for d in doors):
-            continue  # both wings put their front doors here, face to face: one doorway
+            # both wings put their front doors here, face to face: one doorway, whose
+            # opening in this wall was cut in line with the other's
+            walls[door.wall] = _without_opening_of(walls[door.wall], door)
+            continue
         walls[other.id] = walls[other.id].with_opening(Opening(
             "door", other.segment().project(Point(door.position)), door.width, door.height))
         doors.append(_doorway(door, rooms))
@@ -264,6 +267,14 @@ def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
         furniture=tuple(i for i in plan.furniture if not (i.is_detail and i.door in gone)),
         diagnostics=plan.diagnostics + tuple(notes))
     return _renumbered_doors(plan), joined
+
+
+def _without_opening_of(wall: Wall, door: Door) -> Wall:
+    """``wall`` less the opening cut for ``door``."""
+    along = wall.segment().project(Point(door.position))
+    kept = tuple(o for o in wall.openings if not (
+        o.kind == "door" and abs(o.center - along) < _TOUCH and abs(o.width - door.width) < _TOUCH))
+    return replace(wall, openings=kept)
 
 
 def _renumbered_doors(plan: FloorPlan) -> FloorPlan:

@@ -83,3 +83,40 @@ def test_wings_that_do_not_touch_are_refused(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "do not touch" in err and "Traceback" not in err
     assert not (tmp_path / "out").exists()
+
+
+OFFICE_WINGS = """\
+units = 1;
+Lot: rectangle(28, 10)
+Rules:
+Lot --> extrude(6.6) Body
+Body --> repeated_split("Y", 3.3){Storey}
+Storey --> split("x"){ ~1 : WingA | ~1 : WingB }
+WingA --> make_floor(6, 0.15, 3>1.5>1.5, 1.0, 2.2, corridor = "spine", corridor_width = 1.8, min_room_width = 2, min_room_area = 4) Floor
+WingB --> make_floor(6, 0.15, 3>1.5>1.5, 1.0, 2.2, corridor = "spine", corridor_width = 1.8, min_room_width = 2, min_room_area = 4, stair = "none") Floor
+Floor --> type_rooms("office_types.csv") Typed
+"""
+
+
+def test_front_doors_face_to_face_make_one_doorway_with_one_opening_per_wall(tmp_path):
+    """Both wings put their front doors in the party wall, face to face: they become one
+    doorway, and each of the two walls keeps one opening there, in line with the other
+    (the second door's own opening used to stay beside the one cut for the first)."""
+    grammar = tmp_path / "office_wings.grammar"
+    grammar.write_text(OFFICE_WINGS, encoding="utf-8")
+    party = LineString([(14, 0), (14, 10)])
+    for seed in range(3):
+        scene = build(grammar, seed=seed, formats=(), physics=False, quiet=True)
+        for plan in scene.floors:
+            for wall in plan.walls:
+                spans = sorted((o.center - o.width / 2, o.center + o.width / 2)
+                               for o in wall.openings)
+                assert all(hi <= lo + 1e-6 for (_, hi), (lo, _) in zip(spans, spans[1:])), \
+                    f"seed {seed}, floor {plan.index}: openings overlap on wall {wall.id}"
+            on_party = [w for w in plan.walls if party.buffer(1e-6).covers(w.segment())]
+            cuts = sorted(round(w.point_at(o.center)[1], 6) for w in on_party
+                          for o in w.openings if o.kind == "door")
+            doorways = [d for d in plan.doors if OUTSIDE not in d.rooms
+                        and Point(d.position).distance(party) < 1e-6]
+            assert doorways and len(cuts) == 2 * len(doorways), (seed, plan.index, cuts)
+            assert all(a == b for a, b in zip(cuts[::2], cuts[1::2])), (seed, cuts)
