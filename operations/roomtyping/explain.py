@@ -173,6 +173,8 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
             break
     lonely: list[str] = []
     for rule in rules:
+        if rule.pinned is not None or not any(_fits(rooms, rule, i) for i in range(len(rooms))):
+            continue  # a carved hall needs no neighbour; a rule that fits nowhere is said above
         partners = [r for r in rules if r is not rule and r.type in rule.neighbours]
         if any(_fits(rooms, rule, i) and _fits(rooms, p, j)
                for i in range(len(rooms)) for j in rooms.adjacency[i] for p in partners):
@@ -180,8 +182,13 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
         if not partners:
             lonely.append(f"{rule.type} lists only {', '.join(sorted(rule.neighbours))}, "
                           "none of them a mandatory type")
+        elif all(p.pinned is not None for p in partners):
+            lonely.append(f"{rule.type} needs {_a(_either([p.type for p in partners]))} "
+                          f"neighbour; no room of ≥ {_area(rule.min_area)} adjoins "
+                          + " or ".join(f"the {p.type} ({rooms.name(p.pinned)})"
+                                        for p in partners if p.pinned is not None))
         else:
-            smallest = min(p.min_area for p in partners)
+            smallest = min(p.min_area for p in partners if p.pinned is None)
             lonely.append(f"{rule.type} needs {_a(_either([p.type for p in partners]))} "
                           f"neighbour; no room of ≥ {_area(rule.min_area)} adjoins a room of "
                           f"≥ {_area(smallest)}")

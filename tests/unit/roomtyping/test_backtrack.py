@@ -81,6 +81,21 @@ def test_no_typing_because_of_neighbours_names_the_rule_and_the_sizes():
            "≥ 30.0 m²" in info.value.reasons
 
 
+def test_a_carved_hall_and_a_rule_too_big_for_every_room_say_nothing_more():
+    """A hall make_floor carved (pinned) needs no neighbour, and a rule no room is big
+    enough for is explained by its size alone: neither adds an empty list of neighbours
+    or a "room of ≥ 0.0 m²" to the reasons."""
+    from cga.operations.roomtyping.explain import static_reasons
+
+    hall = RuleSpec("Hall", 0.0, frozenset(), pinned=0)
+    specs = [hall, RuleSpec("Livingroom", 16, frozenset({"Hall"})),
+             RuleSpec("Kitchen", 8, frozenset({"Hall"})), RuleSpec("Bedroom", 9, frozenset({"Hall"}))]
+    rooms = RoomSet(areas=(12.0, 12.0, 10.0, 8.9), adjacency=(
+        frozenset({1, 2, 3}), frozenset({0}), frozenset({0}), frozenset({0})))
+    assert static_reasons(rooms, specs) == [
+        "Livingroom needs ≥ 16.0 m²; the largest room has 12.0 m²"]
+
+
 def test_explanations_match_the_documented_wording():
     specs = [RuleSpec("Livingroom", 20, frozenset({"Bedroom", "Kitchen"})),
              RuleSpec("Bedroom", 12, frozenset({"Livingroom"})),
