@@ -168,9 +168,32 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             reasons.append(f"a re-drawn layout was typed, but {str(door_error).splitlines()[0]}"
                            + "".join(f"; {r}" for r in door_error.reasons[:2]))
     reasons += unit_reasons(table, units, _free_area(plan))
+    if redraws:
+        reasons += _too_big_reasons(plan, table, units)
     if reasons == first_error.reasons:
         raise first_error
     raise NoSolutionError(str(first_error).splitlines()[0], reasons) from None
+
+
+def _too_big_reasons(plan: FloorPlan, table: RuleTable, units: float) -> list[str]:
+    """When no free room of a drawn floor is as small as a mandatory rule's ``maxSize``
+    (a bathroom of at most 9 m² beside a hall whose rooms are 4.75 m deep and at least
+    2 m wide), what in the grammar makes rooms smaller: the re-draws cannot, their
+    rooms are as deep as the corridor leaves them (docs/make_floor.md)."""
+    scale = table.area_scale(units)
+    smallest = min((r.area for r in plan.rooms if r.type is None and not r.circulation),
+                   default=None)
+    if smallest is None:
+        return []
+    capped = [(r.type, r.max_size * scale) for r in table.mandatory
+              if r.max_size is not None and smallest > r.max_size * scale]
+    if not capped:
+        return []
+    names = ", ".join(f"{kind} (at most {top:.1f} m²)" for kind, top in capped)
+    return [f"every room the floor was cut into is bigger than {names} may be (the smallest "
+            f"has {smallest:.1f} m²): make_floor makes smaller rooms with a lower "
+            "min_room_width, a corridor_position that leaves one side shallow, or a higher "
+            "split count"]
 
 
 def unit_reasons(table: RuleTable, units: float, free_area: float) -> list[str]:

@@ -139,3 +139,22 @@ def test_door_state_is_validated_and_sets_every_door(tmp_path):
     assert doors and {(d.state, round(math.degrees(d.angle), 6)) for d in doors} == {("open", 90.0)}
     graph = child.plan.room_graph
     assert {graph.edges[d.rooms]["state"] for d in doors} == {"open"}
+
+
+def test_rooms_too_deep_for_a_max_size_name_what_makes_them_smaller(tmp_path):
+    """A 20 m deep house with a spine: every room is 9.1 m deep and at least 2.4 m wide,
+    so none is as small as the bathroom's 9 m²; no re-draw can help, and the error says
+    which make_floor options would."""
+    from cga.pipeline import build
+
+    grammar = tmp_path / "deep.grammar"
+    grammar.write_text(
+        "units = 1;\nLot: rectangle(25, 20)\nRules:\nLot --> extrude(3) Storey\n"
+        "Storey --> make_floor(20, 0.2, 2>1.2>1.3, 0.9, 2.1, corridor = \"spine\", "
+        "corridor_width = 1.8, min_room_width = 2.4, min_room_area = 5) Floor\n"
+        "Floor --> type_rooms(\"house_types.csv\") Typed\n", encoding="utf-8")
+    with pytest.raises(NoSolutionError) as info:
+        build(grammar, seed=0, formats=(), physics=False, quiet=True)
+    (hint,) = [r for r in info.value.reasons if r.startswith("every room the floor was cut into")]
+    assert "Bathroom (at most 9.0 m²)" in hint and "min_room_width" in hint
+    assert "corridor_position" in hint
