@@ -147,8 +147,15 @@ class MakeFloor(Operation):
         except CirculationError as error:
             raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {error}",
                                   hint=_footprint_hint(footprint)) from None
-        core = _core(shape, args, ctx, footprint, mass.height, settings,
-                     [Polygon(f.polygon) for f in fixed])
+        try:
+            core = _core(shape, args, ctx, footprint, mass.height, settings,
+                         [Polygon(f.polygon) for f in fixed])
+        except DerivationError as error:
+            if spec.n_left and spec.n_right:  # the core keeps clear of those rooms too
+                error.add_hint("n_left and n_right fill both sides of the corridor with rooms "
+                               "the stair core must keep clear of: set one of them to 0 so "
+                               "the core has a side to stand in")
+            raise
         rooms_fixed = sum(not f.circulation for f in fixed)
         if core is not None:
             fixed = [_core_face(core, fixed), *fixed]

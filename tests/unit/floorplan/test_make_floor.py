@@ -260,3 +260,20 @@ def test_shortfall_counts_rooms_without_the_hall():
     rooms = sum(not r.circulation for r in child.plan.rooms)
     [d] = [r for r in reports if r.level == "warning"]
     assert rooms < 10 and d.message.startswith(f"made {rooms} rooms instead of 10: ")
+
+
+def test_equal_rooms_on_both_sides_leave_the_stair_no_place_and_the_error_says_so(tmp_path):
+    """n_left and n_right fill both sides of the spine with fixed rooms the stair core
+    keeps clear of: the error names them, not only the lot and the stair's size."""
+    from cga.errors import CGAError
+    from cga.pipeline import build
+
+    grammar = tmp_path / "equal.grammar"
+    grammar.write_text(
+        "units = 1;\nLot: rectangle(24, 11)\nRules:\nLot --> extrude(6.6) Body\n"
+        "Body --> repeated_split(\"Y\", 3.3){Storey}\n"
+        "Storey --> make_floor(9, 0.15, 3>1.5>1.5, 1.0, 2.2, corridor = \"spine\", "
+        "corridor_width = 1.8, n_left = 5, n_right = 5) Floor\n", encoding="utf-8")
+    with pytest.raises(CGAError, match="no place for a U stair core") as info:
+        build(grammar, seed=0, formats=(), physics=False, quiet=True)
+    assert "n_left and n_right fill both sides" in str(info.value)
