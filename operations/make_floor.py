@@ -146,7 +146,7 @@ class MakeFloor(Operation):
             fixed = circulation_faces(ring, spec)
         except CirculationError as error:
             raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {error}",
-                                  hint=_footprint_hint(footprint)) from None
+                                  hint=_footprint_size(footprint)) from None
         try:
             core = _core(shape, args, ctx, footprint, mass.height, settings,
                          [Polygon(f.polygon) for f in fixed])
@@ -341,9 +341,14 @@ def _footprint(polygon: Polygon) -> Polygon:
     return clean
 
 
-def _footprint_hint(footprint: Polygon) -> str:
-    """What the footprint is, for messages about footprints the partition refuses."""
+def _footprint_size(footprint: Polygon) -> str:
+    """What the footprint is, for messages about footprints make_floor refuses."""
     minx, minz, maxx, maxz = footprint.bounds
     return (f"the footprint is {maxx - minx:.4g} m x {maxz - minz:.4g} m with "
-            f"{len(footprint.exterior.coords) - 1} corners; give the storey a larger lot, "
-            f"without corners closer than a micrometre")
+            f"{len(footprint.exterior.coords) - 1} corners")
+
+
+def _footprint_hint(footprint: Polygon) -> str:
+    """:func:`_footprint_size` and what makes a footprint the partition takes."""
+    return (f"{_footprint_size(footprint)}; give the storey a larger lot, without corners "
+            "closer than a micrometre")
