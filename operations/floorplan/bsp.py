@@ -201,8 +201,8 @@ def partition(footprint: Sequence[Point], splits: int, rng: np.random.Generator,
     for _ in range(splits):
         cut = _split_largest(dcel, rng, rules, len(fixed), circulation)
         if cut is None:
-            return Partition(dcel, tuple(cuts), splits, _shortfall(dcel, rules, len(fixed)),
-                             fixed)
+            return Partition(dcel, tuple(cuts), splits,
+                             _shortfall(dcel, rules, len(fixed), circulation), fixed)
         cuts.append(cut)
     return Partition(dcel, tuple(cuts), splits, None, fixed)
 
@@ -225,15 +225,23 @@ def _split_largest(dcel: DCEL, rng: np.random.Generator, rules: _Rules, first_fr
     return None
 
 
-def _shortfall(dcel: DCEL, rules: _Rules, first_free: int) -> str:
+def _shortfall(dcel: DCEL, rules: _Rules, first_free: int, circulation: set[Face]) -> str:
+    """Why no room could be cut again: the sizes, or, for a room big enough to halve
+    beside circulation, the wall on it both halves must keep."""
     if first_free == len(dcel.faces):
         return "the fixed faces leave no free floor to cut"
     largest = max(dcel.faces[first_free:], key=lambda f: (dcel.area(f), -f.id))
     xs, zs = zip(*dcel.points(largest))
+    size = (f"the largest, room {largest.id}, is {max(xs) - min(xs):.2f} × "
+            f"{max(zs) - min(zs):.2f} m, {dcel.area(largest):.2f} m²")
+    halvable = (max(max(xs) - min(xs), max(zs) - min(zs)) >= 2 * rules.min_width
+                and dcel.area(largest) >= 2 * rules.min_area)
+    if halvable and circulation and rules.min_contact > 0:
+        return (f"no room can be cut again so that both rooms keep {rules.min_contact:.2f} m "
+                f"of wall on a hall or corridor, and are {rules.min_width:.2f} m "
+                f"wide and {rules.min_area:.2f} m² ({size})")
     return (f"no room can be cut again without making a room narrower than "
-            f"{rules.min_width:.2f} m or smaller than {rules.min_area:.2f} m² (the largest, "
-            f"room {largest.id}, is {max(xs) - min(xs):.2f} × {max(zs) - min(zs):.2f} m, "
-            f"{dcel.area(largest):.2f} m²)")
+            f"{rules.min_width:.2f} m or smaller than {rules.min_area:.2f} m² ({size})")
 
 
 def _choose_cut(ring: list[Point], rng: np.random.Generator, rules: _Rules,

@@ -74,8 +74,8 @@ def partition_to_areas(footprint: Sequence[Point], areas: Sequence[float],
     circulation = {dcel.faces[i] for i, f in enumerate(fixed) if f.circulation}
     free = dcel.faces[len(fixed):]
     if not free:  # the fixed faces fill the floor (rooms laid out along a corridor)
-        return Partition(dcel, (), len(areas) - pieces, _shortfall(dcel, rules, len(fixed)),
-                         fixed)
+        return Partition(dcel, (), len(areas) - pieces,
+                         _shortfall(dcel, rules, len(fixed), circulation), fixed)
     shares = _share([Polygon(dcel.points(f)) for f in free], list(areas), min_width, rng)
     todo = list(zip(free, shares))
     cuts: list[Cut] = []
@@ -95,7 +95,7 @@ def partition_to_areas(footprint: Sequence[Point], areas: Sequence[float],
         todo += [(dcel.faces[cut_made.face], first), (dcel.faces[cut_made.new_face], second)]
     shortfall = None
     if merged:
-        shortfall = _shortfall(dcel, rules, len(fixed))
+        shortfall = _shortfall(dcel, rules, len(fixed), circulation)
     return Partition(dcel, tuple(cuts), len(areas) - pieces, shortfall, fixed)
 
 

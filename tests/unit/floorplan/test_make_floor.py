@@ -279,3 +279,19 @@ def test_equal_rooms_on_both_sides_leave_the_stair_no_place_and_the_error_says_s
     with pytest.raises(CGAError, match="no place for a U stair core") as info:
         build(grammar, seed=0, formats=(), physics=False, quiet=True)
     assert "n_left and n_right fill both sides" in str(info.value)
+
+
+def test_a_room_kept_whole_by_its_hall_contact_says_so():
+    """A straight stair core along a short hall leaves the room beyond it a few metres
+    of hall: it is large enough to halve, but not so that both halves keep their
+    contact, and the shortfall says that rather than blaming width or area."""
+    from cga.operations.floorplan.bsp import FixedFace, partition
+
+    hall = [(4.0, 0.0), (5.6, 0.0), (5.6, 9.0), (4.0, 9.0)]
+    core = [(5.6, 3.0), (7.0, 3.0), (7.0, 9.0), (5.6, 9.0)]  # beside the hall, not on it
+    result = partition([(0, 0), (12, 0), (12, 9), (0, 9)], 8, np.random.default_rng(0),
+                       fixed=[FixedFace(hall, circulation=True, kind="hall"),
+                              FixedFace(core, kind="core")],
+                       min_width=2.0, min_area=4.0, min_contact=1.5)
+    assert result.shortfall is not None
+    assert "keep 1.50 m of wall on a hall or corridor" in result.shortfall
