@@ -26,12 +26,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "support"))
 
-from cga.authoring import floor_from_rectangles, furnish_floor, type_floor  # noqa: E402
-from cga.errors import NoSolutionError  # noqa: E402
+from cga.authoring import furnish_floor  # noqa: E402
 from cga.operations.furniture.disorder import MAX_YAW  # noqa: E402
 from cga.operations.furniture.library import default_library  # noqa: E402
 from furniture_checks import furniture_violations  # noqa: E402
-from hall_floors import KINDS, with_hall  # noqa: E402
+from hall_floors import typed_hall_floor  # noqa: E402
 
 LEVELS = (0.0, 0.4, 1.0)
 
@@ -47,14 +46,10 @@ def main(argv: list[str] | None = None) -> int:
     while floors < args.floors:
         seed += 1
         kind = "office" if seed % 2 == 0 else "house"
-        types, table, width, depth, _ = KINDS[kind]
-        rng = np.random.default_rng(seed)
-        plan = floor_from_rectangles(with_hall(rng, width, depth), windows_per_wall=2,
-                                     circulation=[0])
-        try:
-            typed = type_floor(plan, types, seed=seed)
-        except NoSolutionError:
+        floor = typed_hall_floor(kind, seed)
+        if floor is None:
             continue
+        typed, table = floor
         floors += 1
         for level in LEVELS:
             furnished = furnish_floor(typed, table, seed=seed, clearance_tries=5,

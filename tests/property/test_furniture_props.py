@@ -18,8 +18,6 @@ from shapely.geometry import Polygon, box
 from shapely.geometry.polygon import orient
 from shapely.ops import unary_union
 
-from cga.authoring import floor_from_rectangles, type_floor
-from cga.errors import NoSolutionError
 from cga.authoring import furnish_floor
 from cga.operations.furniture.clearance import OpeningStrip
 from cga.operations.furniture.library import default_library
@@ -27,7 +25,7 @@ from cga.operations.furniture.passage import (APPROACH_MARGIN, MIN_REACHED_SHARE
                                               Passage)
 
 from furniture_checks import furniture_violations
-from hall_floors import KINDS, with_hall
+from hall_floors import typed_hall_floor
 
 RULES = Path(__file__).resolve().parents[2] / "rules"
 FLOORS = 300
@@ -40,14 +38,10 @@ def test_furnished_floors_keep_every_guarantee():
     while furnished < FLOORS:
         seed += 1
         kind = "office" if seed % 3 == 0 else "house"
-        types, table, width, depth, _ = KINDS[kind]
-        rng = np.random.default_rng(seed)
-        plan = floor_from_rectangles(with_hall(rng, width, depth), windows_per_wall=2,
-                                     circulation=[0])
-        try:
-            typed = type_floor(plan, types, seed=seed)
-        except NoSolutionError:
+        floor = typed_hall_floor(kind, seed)
+        if floor is None:
             continue
+        typed, table = floor
         result = furnish_floor(typed, table, seed=seed, clearance_tries=5, library=library)
         problems = furniture_violations(result, RULES / table)
         assert problems == [], f"{kind} floor, seed {seed}: {problems[:5]}"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["HALL", "KINDS", "with_hall"]
+__all__ = ["HALL", "KINDS", "typed_hall_floor", "with_hall"]
 
 KINDS = {"house": ("house_types.csv", "furniture_house.csv", (10, 15), (8, 11), (3, 7)),
          "office": ("office_types.csv", "furniture_office.csv", (14, 20), (10, 14), (5, 9))}
@@ -29,3 +29,20 @@ def with_hall(rng: np.random.Generator, width: tuple, depth: tuple
             x += step
         pieces.append((x, lo, w, hi))
     return pieces
+
+
+def typed_hall_floor(kind: str, seed: int):
+    """A random floor of ``kind`` (:data:`KINDS`) drawn from ``seed``, typed by its
+    shipped table with the same seed, and the furniture table that goes with it; None
+    when the table cannot type that floor."""
+    from cga.authoring import floor_from_rectangles, type_floor
+    from cga.errors import NoSolutionError
+
+    types, table, width, depth, _ = KINDS[kind]
+    rng = np.random.default_rng(seed)
+    plan = floor_from_rectangles(with_hall(rng, width, depth), windows_per_wall=2,
+                                 circulation=[0])
+    try:
+        return type_floor(plan, types, seed=seed), table
+    except NoSolutionError:
+        return None

@@ -8,10 +8,9 @@ import numpy as np
 import pytest
 
 from furniture_checks import furniture_violations
-from hall_floors import KINDS, with_hall
+from hall_floors import typed_hall_floor
 
-from cga.authoring import floor_from_rectangles, furnish_floor, type_floor
-from cga.errors import NoSolutionError
+from cga.authoring import furnish_floor
 from cga.operations.furniture import placement, solver
 from cga.operations.furniture.rules import load_furniture_rules, parse_furniture_rules
 from cga.operations.furniture.layout import ItemSpec
@@ -159,16 +158,12 @@ def test_attempts_given_up_early_give_the_same_furniture(monkeypatch, library, k
     monkeypatch.setattr(placement.Placer, "pass_over",
                         lambda self, spec: (passed_over.append(spec.name),
                                             pass_over(self, spec))[1])
-    types, table, width, depth, _ = KINDS[kind]
     floors = 0
     for seed in range(1, 46):
-        rng = np.random.default_rng(seed)
-        plan = floor_from_rectangles(with_hall(rng, width, depth), windows_per_wall=2,
-                                     circulation=[0])
-        try:
-            typed = type_floor(plan, types, seed=seed)
-        except NoSolutionError:
+        floor = typed_hall_floor(kind, seed)
+        if floor is None:
             continue
+        typed, table = floor
         floors += 1
         furnished = []
         for solve_once in (solver._solve_once, _run_to_the_end(solver._solve_once)):
