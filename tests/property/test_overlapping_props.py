@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from cga.meshing.solids import _overlapping
 
 grid = st.integers(min_value=0, max_value=8).map(lambda k: k * 0.5)
-wild = st.floats(min_value=0.0, max_value=4.0, allow_nan=False)
+wild = st.floats(min_value=0.0, max_value=4.0, allow_nan=False, allow_subnormal=False)
 
 
 @st.composite
