@@ -44,6 +44,9 @@ _GRID = 0.01  # m: core sizes and positions on the BSP's 1 cm grid
 _STEP = 0.5  # m: spacing of the candidate positions along an edge
 _MAX_POSITIONS = 24  # candidate positions per edge at most
 _DOOR_MARGIN = 0.1  # m: clear wall each side of a door (roomtyping.doors.DOOR_MARGIN)
+_FRONTAGE_SHARE = 0.4
+"""Most of a free part's corridor frontage a core takes before a place that takes less
+ranks above it (:func:`_starves`)."""
 
 
 @dataclass(frozen=True)
@@ -131,15 +134,17 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
     -----
     Candidates lie along every axis-aligned edge of the footprint and of the corridors
     (on the side away from the corridor) that is long enough for the core: flush with
-    either end or at least ``min_width`` from it, every 0.5 m, the landing at either
-    end; a core whose far side would leave a strip narrower than ``min_width`` is also
+    either end or at least ``min_width`` from it, every 0.5 m, or flush against a
+    corridor crossing the edge, the landing at either end; a core whose far side would leave a strip narrower than ``min_width`` is also
     tried stretched across it (:func:`_breadths`). A candidate is kept when the core
     lies inside the footprint and off the corridors, splits the free floor into no more
     parts, leaves no new part narrower than ``min_width``, and the landing's long side
     faces the inside (it takes the door). Ranked: the landing touches a corridor over a
-    door width, the core is not stretched, it stands against an outer wall, its landing
-    is nearest the footprint's centre (ties in the order the candidates are made); the
-    pick among the best three is drawn from ``rng``.
+    door width, the core takes no more than :data:`_FRONTAGE_SHARE` of the corridor
+    frontage of the free part it stands in (:func:`_starves`), it is not stretched, it
+    stands against an outer wall, its landing is nearest the footprint's centre (ties in
+    the order the candidates are made); the pick is drawn from ``rng`` among the best
+    three that are as good as the best on the first two.
 
     Only the best three kept candidates matter, so every candidate is ranked first and
     the costly tests (off the corridors, :meth:`_Room.fits`: two polygon overlays and an
@@ -177,6 +182,8 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
             passes[r] = (not any(rect.intersects(c) and rect.intersection(c).area > 1e-9
                                  for c in corridors) and room.fits(rect))
         if passes[r]:
+            if best and keys[k][:2] != keys[best[0]][:2]:
+                break  # the draw is among places as good on the landing and the frontage
             best.append(k)
             if len(best) == 3:
                 break
@@ -254,10 +261,11 @@ class _Candidates:
 
 def _ranks(found: _Candidates, keep: np.ndarray, footprint: Polygon,
            corridors: Sequence[Polygon], *, depth: float, wall: float, door_width: float,
-           interior_width: float) -> dict[int, tuple[bool, bool, bool, float]]:
+           interior_width: float) -> dict[int, tuple[bool, bool, bool, bool, float]]:
     """The ranking keys of the candidates ``keep``, by candidate: the landing does not
-    open onto a corridor over a door width, the core is stretched, it does not touch the
-    outer wall, and its landing's distance to the footprint's centre (lowest first).
+    open onto a corridor over a door width, the core starves its part of corridor
+    frontage (:func:`_starves`), it is stretched, it does not touch the outer wall, and
+    its landing's distance to the footprint's centre (lowest first).
 
     The overlays run only where they can meet anything: a landing whose bounding box
     is more than a millimetre off a corridor's, or a core that does not touch the outer
@@ -284,8 +292,28 @@ def _ranks(found: _Candidates, keep: np.ndarray, footprint: Polygon,
     landing = shapely.points(found.at(depth / 2, interior_width / 2)[keep])
     distance = shapely.distance(landing, footprint.centroid)
     rect = found.rect[keep]
-    return {int(k): (not o, bool(found.stretched[r]), not walled[r], float(dist))
+    starves = _starves(found.rects, footprint, corridors)
+    return {int(k): (not o, bool(starves[r]), bool(found.stretched[r]), not walled[r],
+                     float(dist))
             for k, o, r, dist in zip(keep, onto.tolist(), rect, distance)}
+
+
+def _starves(rects: np.ndarray, footprint: Polygon, corridors: Sequence[Polygon]) -> np.ndarray:
+    """By rectangle: the core would run along more than :data:`_FRONTAGE_SHARE` of the
+    corridor frontage of the free part it stands in. Every room of that part is cut to
+    touch the corridor, so a core laid along a short hall leaves them a few metres of it
+    and the part cannot be divided (a room of 35–48 m² beside a 10 m hall)."""
+    starves = np.zeros(len(rects), dtype=bool)
+    if not corridors:
+        return starves
+    halls = shapely.buffer(unary_union([c.boundary for c in corridors]), 1e-6)
+    parts = shapely.get_parts(_free_region(footprint, corridors))
+    frontage = shapely.length(shapely.intersection(shapely.boundary(parts), halls))
+    taken = shapely.length(shapely.intersection(shapely.boundary(rects), halls))
+    tree = shapely.STRtree(parts)
+    rect, part = tree.query(shapely.point_on_surface(rects), predicate="within")
+    starves[rect] = taken[rect] > _FRONTAGE_SHARE * frontage[part] + 1e-6
+    return starves
 
 
 def _positions(edge: float, length: float, min_width: float) -> list[float]:
@@ -300,6 +328,25 @@ def _positions(edge: float, length: float, min_width: float) -> list[float]:
         for k in range(count):
             out.add(round(math.floor((min_width + k * step) / _GRID + 1e-6) * _GRID, 6))
     return sorted(out)
+
+
+def _beside_corridors(a: Point2, d: np.ndarray, edge: float, length: float,
+                      corridors: Sequence[Polygon]) -> list[float]:
+    """Offsets along the edge from ``a`` (direction ``d``, ``edge`` long) at which a core
+    ``length`` long stands flush against the side of a corridor that crosses the edge:
+    its end then opens onto the corridor across it, and the rooms beyond keep the
+    corridor's length (the 0.5 m steps of :func:`_positions` miss that spot)."""
+    out = []
+    for corridor in corridors:
+        coords = np.asarray(corridor.exterior.coords) - np.asarray(a)
+        along = coords @ d
+        across = coords @ np.array([-d[1], d[0]])
+        if across.min() > 1e-6:
+            continue  # the corridor does not reach this edge
+        for s in (round(float(along.max()), 6), round(float(along.min()) - length, 6)):
+            if -1e-9 <= s <= edge - length + 1e-9:
+                out.append(s)
+    return out
 
 
 def _sites(footprint: Polygon, corridors: Sequence[Polygon], length: float,
@@ -317,7 +364,8 @@ def _sites(footprint: Polygon, corridors: Sequence[Polygon], length: float,
         if edge < length - 1e-9 or min(abs(d[0]), abs(d[1])) > 1e-9:
             continue
         n = np.array([-d[1], d[0]])  # the inside lies to the left of a CCW edge
-        for s in _positions(edge, length, min_width):
+        for s in _positions(edge, length, min_width) + _beside_corridors(a, d, edge, length,
+                                                                         corridors):
             corners.append(np.asarray(a) + d * s)
             along.append(d)
             across.append(n)

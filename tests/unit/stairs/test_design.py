@@ -103,6 +103,22 @@ def test_with_a_corridor_the_landing_opens_onto_it():
         assert _landing_opening(core, corridor) >= 0.9 + 0.2  # a door and its margins
 
 
+def test_a_core_beside_a_short_hall_leaves_the_rooms_most_of_it():
+    """An 11 m x 10 m house with a 1.5 m hall across it: a U core laid along the hall
+    would take 4.8 of the 10 m the rooms beyond it share; standing flush against the
+    hall's side, across it, the core's end opens onto the hall and the rooms keep 7.4 m."""
+    footprint, hall = box(0, 0, 11, 10), box(2.55, 0, 4.05, 10)
+    beyond = box(4.05, 0, 11, 10)
+    for seed in range(8):
+        core = place_core(footprint, 3.0, 3, StairParams(), wall=0.2, door_width=0.9,
+                          min_width=2.0, rng=np.random.default_rng(seed), corridors=[hall])
+        assert core.polygon.intersection(hall).area < 1e-9
+        assert _landing_opening(core, hall) >= 0.9 + 0.2
+        side = beyond.boundary.intersection(hall.boundary.buffer(1e-6))
+        taken = core.polygon.boundary.intersection(hall.boundary.buffer(1e-6)).length
+        assert taken <= 0.4 * side.length, (seed, core.polygon.bounds)
+
+
 def test_a_core_in_a_bay_too_shallow_for_a_room_beside_it_fills_the_bay():
     # the office demo: a 22 m x 10 m floor, a 1.8 m spine corridor; bays 4.1 m deep, and a
     # 2.5 m deep core would leave a 1.6 m strip where a 2 m room is needed
