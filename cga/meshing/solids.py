@@ -83,12 +83,9 @@ def wall_footprints(plan: FloorPlan) -> dict[int, Polygon | MultiPolygon]:
     earlier: list[list[int]] = [[] for _ in walls]
     for i, j in zip(*_overlapping(bands, bands, earlier=True)):
         earlier[i].append(j)
+    pieces = _claimed(bands, earlier)
     out: dict[int, Polygon | MultiPolygon] = {}
-    for i, w in enumerate(walls):
-        piece = bands[i]
-        for j in earlier[i]:
-            piece = piece.difference(bands[j])
-        piece = _without_slivers(shapely.simplify(piece, 0.0) if earlier[i] else piece)
+    for w, piece in zip(walls, map(_without_slivers, pieces)):
         if piece is not None:
             out[w.id] = piece
     return out
@@ -177,6 +174,25 @@ def _overlapping(geometries: np.ndarray, others: np.ndarray, *,
     i, j = i[inner], j[inner]
     keep = shapely.overlaps(geometries[i], others[j])
     return i[keep], j[keep]
+
+
+def _claimed(bands: np.ndarray, earlier: list[list[int]]) -> np.ndarray:
+    """Each band less the ``earlier`` bands that overlap it, one after another, and
+    simplified (``shapely.simplify(piece, 0.0)``, dropping the corners left in line)
+    where any was cut; the others as they are.
+
+    Every band's first earlier band is cut from it in one shapely call (the same GEOS
+    difference, band by band, without shapely's overhead per call), any further one (a
+    wall between two earlier ones) after it, one by one."""
+    pieces = bands.copy()
+    cut = [i for i, e in enumerate(earlier) if e]
+    if cut:
+        pieces[cut] = shapely.difference(bands[cut], bands[[earlier[i][0] for i in cut]])
+        for i in cut:
+            for j in earlier[i][1:]:
+                pieces[i] = pieces[i].difference(bands[j])
+        pieces[cut] = shapely.simplify(pieces[cut], 0.0)
+    return pieces
 
 
 def _key(p: tuple[float, float]) -> tuple[float, float]:
