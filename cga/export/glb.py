@@ -184,7 +184,7 @@ def _source_key(node: SceneNode, vertices: np.ndarray) -> _Source | None:
             np.asarray(node.face_materials, dtype=np.int64).tobytes(), node.materials)
 
 
-def _written_matrices(matrices: Sequence[np.ndarray]) -> list[list[float] | None]:
+def _written_matrices(matrices: Sequence[np.ndarray] | np.ndarray) -> list[list[float] | None]:
     """Each 4×4 matrix as a node's glTF ``matrix`` (its columns, as plain floats), or None
     where it is within 1e-8 of the identity by trimesh's measure (the spread of the
     difference, ``np.ptp``) and is not written. All at once: per matrix, the reductions
@@ -451,7 +451,7 @@ def _face_normal_where_flat(normals: np.ndarray, flat: np.ndarray, faces: np.nda
                              (0.0, 1.0, 0.0))
 
 
-_MeshKey = tuple[tuple[bytes, bytes, bytes | int], ...]
+_MeshKey = tuple[tuple[bytes, bytes, bytes | int | None], ...]
 
 
 def _mesh_key(primitives: Sequence[_Primitive]) -> _MeshKey:

@@ -310,14 +310,12 @@ class _Plain:
     def __init__(self) -> None:
         self.names: dict[str, str] = {}
 
-    @staticmethod
-    def numbers(values: Sequence[float | int]) -> str:
+    def numbers(self, values: Sequence[float | int]) -> str:
         """Floats and ints (exactly those types) as JSON text, comma-separated, NaN as
         ``nan`` and infinities as ``inf``."""
         return ", ".join(map(repr, values))
 
-    @staticmethod
-    def scalar(value: Any) -> str:
+    def scalar(self, value: Any) -> str:
         """A JSON number or literal, as :mod:`json` writes it.
 
         Raises
@@ -385,12 +383,12 @@ class _Rounded(_Plain):
         if isinstance(value, float):
             text = self.written.get(value)
             if text is None:
-                text = self.written[value] = _Plain.scalar(round(float(value), _DIGITS) + 0.0)
+                text = self.written[value] = super().scalar(round(float(value), _DIGITS) + 0.0)
             return text
         if isinstance(value, int) and not isinstance(value, bool):
             return int.__repr__(int(value))
         if value is None or isinstance(value, bool):
-            return _Plain.scalar(value)
+            return super().scalar(value)
         raise TypeError(f"a {type(value).__name__} is left to _clean")
 
     @staticmethod
