@@ -29,7 +29,6 @@ largest.
 
 from __future__ import annotations
 
-from collections import deque
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Literal
@@ -253,14 +252,14 @@ def _typed_with_doors(plan: FloorPlan, table: RuleTable, rng: np.random.Generato
     bedrooms only): the typing's draws put the rooms elsewhere, the layout stays."""
     from .roomtyping.room_graph import NoDoorsError
 
-    for attempt in range(DOOR_RETRIES):
+    for _ in range(DOOR_RETRIES - 1):
         try:
             return _type_layout(plan, table, rng, units=units, strict=strict,
                                 door_position=door_position, door_state=door_state)
         except NoDoorsError:
-            if attempt == DOOR_RETRIES - 1:
-                raise
-    raise AssertionError("unreachable")  # pragma: no cover
+            continue
+    return _type_layout(plan, table, rng, units=units, strict=strict,
+                        door_position=door_position, door_state=door_state)
 
 
 def _typed_through_private(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
@@ -271,50 +270,28 @@ def _typed_through_private(plan: FloorPlan, table: RuleTable, rng: np.random.Gen
     takes except through a private room: typed again with such doors allowed
     (:func:`~.roomtyping.room_graph.access_pairs`), a warning for each (None: that does
     not type either). Kept only when no re-drawn layout does better."""
+    from cga.quality import floor_quality
+
     try:
         typed = _type_layout(plan, table, rng, units=units, strict=strict,
                              door_position=door_position, door_state=door_state,
                              through_private=True)
     except NoSolutionError:
         return None
+    # the floor's quality report says which rooms the doors reach only through private
+    # ones, and behind which private room each lies when one alone cuts it off
+    report = floor_quality(typed)
+    gates = {room: entry["room"] for entry in report["pass_through_private"]
+             for room in entry["behind"]}
     notes = [Diagnostic("warning", _STAGE, (
-        f"{_describe(typed.room(room))} is reached only through {_describe(typed.room(gate))}: "
-        "no layout or typing tried gives it a way in that avoids private rooms (make_floor's "
-        "corridor= would)"), floor=typed.index, room=room)
-        for room, gate in sorted(_behind_private(typed).items())
+        f"{_describe(typed.room(room))} is reached only through "
+        + (_describe(typed.room(gates[room])) if room in gates else "private rooms")
+        + ": no layout or typing tried gives it a way in that avoids private rooms "
+        "(make_floor's corridor= would)"), floor=typed.index, room=room)
+        for room in report["reached_only_through_private"]
         if typed.room(room).type == DEFAULT_TYPE]  # others only as enteredFrom allows
     typed = typed.with_changes(diagnostics=typed.diagnostics + tuple(notes))
     return _redrawn(typed, *redrawn, table, units)
-
-
-def _behind_private(typed: FloorPlan) -> dict[int, int]:
-    """Room → the first private room on its way from the entry, for every room the doors
-    reach only through a private one (a breadth-first search that stops at private
-    rooms, then one that goes through them)."""
-    neighbours: dict[int, list[int]] = {room.id: [] for room in typed.rooms}
-    for door in typed.doors:
-        if OUTSIDE not in door.rooms:
-            neighbours[door.rooms[0]].append(door.rooms[1])
-            neighbours[door.rooms[1]].append(door.rooms[0])
-    assert typed.entry is not None
-    free = {typed.entry}
-    frontier = [typed.entry]
-    while frontier:
-        room = frontier.pop()
-        for other in neighbours[room]:
-            if other not in free and not typed.room(other).private:
-                free.add(other)
-                frontier.append(other)
-    gates = {other: other for room in sorted(free) for other in neighbours[room]
-             if other not in free}  # private rooms the free part opens into
-    queue = deque(sorted(gates))
-    while queue:
-        room = queue.popleft()
-        for other in neighbours[room]:
-            if other not in free and other not in gates:
-                gates[other] = gates[room]
-                queue.append(other)
-    return {room: gate for room, gate in gates.items() if room != gate}
 
 
 def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,

@@ -129,8 +129,8 @@ def clear_leaves(plan: FloorPlan, doors: Sequence[Door]) -> tuple[list[Door], li
                          + f" instead of {door.state} at {math.degrees(door.angle):.0f}°: "
                          "further open, its leaf would meet another door's leaf or doorway")
             door = replace(door, state=state, angle=angle)
-        if angle > 0:
-            settled.append(leaf.footprint(angle).buffer(LEAF_SPACING, join_style="mitre"))
+        if angle > 0:  # the loop stopped at a clear angle, ``shadow`` that leaf's
+            settled.append(shadow.buffer(LEAF_SPACING, join_style="mitre"))
         out.append(door)
     return out, notes
 

@@ -149,8 +149,9 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
     door, neighbours that cannot exist); empty when the obstacle is the arrangement."""
     reasons: list[str] = []
     largest = max(rooms.areas, default=0.0)
-    for rule in rules:
-        if not any(_fits(rooms, rule, i) for i in range(len(rooms))):
+    nowhere = [not any(_fits(rooms, rule, i) for i in range(len(rooms))) for rule in rules]
+    for rule, fits_nowhere in zip(rules, nowhere):
+        if fits_nowhere:
             if rule.min_area > largest:
                 reasons.append(f"{rule.type} needs ≥ {_area(rule.min_area)}; the largest room "
                                f"has {_area(largest)}")
@@ -172,8 +173,8 @@ def static_reasons(rooms: RoomSet, rules: Sequence[RuleSpec]) -> list[str]:
                            f"≥ {_area(rule.min_area)}")
             break
     lonely: list[str] = []
-    for rule in rules:
-        if rule.pinned is not None or not any(_fits(rooms, rule, i) for i in range(len(rooms))):
+    for rule, fits_nowhere in zip(rules, nowhere):
+        if rule.pinned is not None or fits_nowhere:
             continue  # a carved hall needs no neighbour; a rule that fits nowhere is said above
         partners = [r for r in rules if r is not rule and r.type in rule.neighbours]
         if any(_fits(rooms, rule, i) and _fits(rooms, p, j)

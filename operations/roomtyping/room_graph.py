@@ -203,9 +203,10 @@ def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
     rule lets others pass through, or a private room that ``b`` lists explicitly in
     ``enteredFrom`` (an en-suite bathroom). A room no rule takes (the default type) is
     entered from any room but a private one: a bedroom is never the way into it, unless
-    ``through_private`` (the typing's last resort, with a warning). Steps out of circulation cost 1, out of other
-    rooms 4, so rooms open onto the hall or corridor whenever they can. The doors form a
-    tree: no room is entered twice, and adjacency alone makes no door.
+    ``through_private`` (the typing's last resort, with a warning). Steps out of
+    circulation cost 1, out of other rooms 4, so rooms open onto the hall or corridor
+    whenever they can. The doors form a tree: no room is entered twice, and adjacency
+    alone makes no door.
 
     Raises
     ------
@@ -271,6 +272,6 @@ def access_pairs(rooms: Sequence[Room], sites: DoorSites, table: RuleTable, *,
             reasons.append(f"room {room} ({by_id[room].type}) may be entered from {allowed}; "
                            f"its door-capable neighbours are {beside or 'none'}")
         raise NoDoorsError(f"the access rules of {table.file} leave room"
-                              f"{'s' if len(missing) > 1 else ''} "
-                              f"{', '.join(map(str, missing))} without a door", reasons)
+                           f"{'s' if len(missing) > 1 else ''} "
+                           f"{', '.join(map(str, missing))} without a door", reasons)
     return sorted(tuple(sorted((a, b))) for b, a in parent.items())  # type: ignore[misc]

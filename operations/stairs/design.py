@@ -135,8 +135,9 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
     Candidates lie along every axis-aligned edge of the footprint and of the corridors
     (on the side away from the corridor) that is long enough for the core: flush with
     either end or at least ``min_width`` from it, every 0.5 m, or flush against a
-    corridor crossing the edge, the landing at either end; a core whose far side would leave a strip narrower than ``min_width`` is also
-    tried stretched across it (:func:`_breadths`). A candidate is kept when the core
+    corridor crossing the edge, the landing at either end; a core whose far side would
+    leave a strip narrower than ``min_width`` is also tried stretched across it
+    (:func:`_breadths`). A candidate is kept when the core
     lies inside the footprint and off the corridors, splits the free floor into no more
     parts, leaves no new part narrower than ``min_width``, and the landing's long side
     faces the inside (it takes the door). Ranked: the landing touches a corridor over a
@@ -171,7 +172,7 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
                            min_width=min_width, stair_breadth=stair_breadth, wall=wall)
     # the landing's long side is an outer wall: no door there
     faces_in = shapely.contains(footprint, shapely.points(found.at(depth / 2, stair_breadth)))
-    keys = _ranks(found, np.flatnonzero(faces_in), footprint, corridors, depth=depth,
+    keys = _ranks(found, np.flatnonzero(faces_in), footprint, corridors, free, depth=depth,
                   wall=wall, door_width=door_width, interior_width=core.interior_width)
     best: list[int] = []
     passes: dict[int, bool] = {}
@@ -260,7 +261,7 @@ class _Candidates:
 
 
 def _ranks(found: _Candidates, keep: np.ndarray, footprint: Polygon,
-           corridors: Sequence[Polygon], *, depth: float, wall: float, door_width: float,
+           corridors: Sequence[Polygon], free: Polygon | MultiPolygon, *, depth: float, wall: float, door_width: float,
            interior_width: float) -> dict[int, tuple[bool, bool, bool, bool, float]]:
     """The ranking keys of the candidates ``keep``, by candidate: the landing does not
     open onto a corridor over a door width, the core starves its part of corridor
@@ -292,22 +293,24 @@ def _ranks(found: _Candidates, keep: np.ndarray, footprint: Polygon,
     landing = shapely.points(found.at(depth / 2, interior_width / 2)[keep])
     distance = shapely.distance(landing, footprint.centroid)
     rect = found.rect[keep]
-    starves = _starves(found.rects, footprint, corridors)
+    starves = _starves(found.rects, free, corridors)
     return {int(k): (not o, bool(starves[r]), bool(found.stretched[r]), not walled[r],
                      float(dist))
             for k, o, r, dist in zip(keep, onto.tolist(), rect, distance)}
 
 
-def _starves(rects: np.ndarray, footprint: Polygon, corridors: Sequence[Polygon]) -> np.ndarray:
+def _starves(rects: np.ndarray, free: Polygon | MultiPolygon,
+             corridors: Sequence[Polygon]) -> np.ndarray:
     """By rectangle: the core would run along more than :data:`_FRONTAGE_SHARE` of the
-    corridor frontage of the free part it stands in. Every room of that part is cut to
-    touch the corridor, so a core laid along a short hall leaves them a few metres of it
-    and the part cannot be divided (a room of 35–48 m² beside a 10 m hall)."""
+    corridor frontage of the part of the ``free`` region (:func:`_free_region`) it stands
+    in. Every room of that part is cut to touch the corridor, so a core laid along a
+    short hall leaves them a few metres of it and the part cannot be divided (a room of
+    35–48 m² beside a 10 m hall)."""
     starves = np.zeros(len(rects), dtype=bool)
     if not corridors:
         return starves
     halls = shapely.buffer(unary_union([c.boundary for c in corridors]), 1e-6)
-    parts = shapely.get_parts(_free_region(footprint, corridors))
+    parts = shapely.get_parts(free)
     frontage = shapely.length(shapely.intersection(shapely.boundary(parts), halls))
     taken = shapely.length(shapely.intersection(shapely.boundary(rects), halls))
     tree = shapely.STRtree(parts)
