@@ -30,10 +30,10 @@ import functools
 import operator
 from collections.abc import Iterator, Sequence
 
-import manifold3d
 import numpy as np
 
 from cga import scene
+from cga.manifold import manifold3d
 from cga.mesh import MeshLike, is_watertight
 
 from ._solids import _CONVEX_TOLERANCE, cut_pieces

@@ -12,10 +12,10 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 from typing import TypeVar
 
-import manifold3d
 import numpy as np
 
 from cga import scene
+from cga.manifold import manifold3d
 from cga.mesh import MeshLike, TriangleMesh, is_watertight
 
 

@@ -23,12 +23,12 @@ import os
 import tempfile
 from pathlib import Path
 
-import manifold3d
 import numpy as np
 import trimesh
 
 from cga.cache import cache_root
 from cga.fsutil import atomic_write
+from cga.manifold import manifold3d
 
 from ._bullet import obj_objects, obj_text, pybullet, quiet_output
 from ._solids import as_manifold, as_mesh

@@ -17,12 +17,12 @@ import io
 from collections.abc import Sequence
 from pathlib import Path
 
-import manifold3d
 import numpy as np
 import trimesh
 from PIL import Image
 
 from cga.fsutil import atomic_write
+from cga.manifold import manifold3d
 from cga.mesh import as_trimesh
 from cga.scene import Scene, SceneNode
 

@@ -25,12 +25,12 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import manifold3d
 import numpy as np
 import shapely
 import trimesh
 from shapely.geometry import Polygon
 
+from cga.manifold import manifold3d
 from cga.mesh import MeshLike, TriangleMesh, is_watertight
 from cga.model import FloorPlan, Opening, Wall
 from cga.scene import SceneNode

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-import manifold3d
 import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.polygon import orient
 
+from cga.manifold import manifold3d
 from cga.mesh import TriangleMesh
 
 __all__ = ["oriented_rings", "prism", "prism_mesh"]

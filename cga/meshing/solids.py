@@ -20,11 +20,11 @@ solids are built last, from whatever openings the walls carry then (docs/archite
 
 from __future__ import annotations
 
-import manifold3d
 import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
+from cga.manifold import manifold3d
 from cga.mesh import TriangleMesh, is_watertight
 from cga.model import FloorPlan, Opening, Wall
 from cga.scene import SceneNode

@@ -14,11 +14,11 @@
 
 from __future__ import annotations
 
-import manifold3d
 import numpy as np
 import shapely
 from shapely.geometry import LineString, Polygon
 
+from cga.manifold import manifold3d
 from cga.mesh import TriangleMesh, mirrors, transform_points
 from cga.model import Flight, FloorPlan, Stair
 from cga.scene import SceneNode

@@ -1,5 +1,5 @@
 """The command line asks BLAS for one thread before numpy loads, and keeps a setting the
-user made."""
+user made; manifold3d computes on the calling thread."""
 
 from __future__ import annotations
 
@@ -8,7 +8,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from cga.threads import BLAS_THREAD_VARIABLES, one_blas_thread
+import pytest
+
+from cga.threads import BLAS_THREAD_VARIABLES, first_use_on_one_cpu, one_blas_thread
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -45,3 +47,44 @@ def test_one_blas_thread_sets_only_missing_variables(monkeypatch):
     assert os.environ["OPENBLAS_NUM_THREADS"] == "1"
     assert os.environ["MKL_NUM_THREADS"] == "4"
 
+
+
+_MANIFOLD_PROBE = """
+import os
+from cga.manifold import manifold3d
+box = manifold3d.Manifold.cube((1.0, 1.0, 1.0))
+cutters = [manifold3d.Manifold.cube((0.2, 2.0, 0.2)).translate((0.1 * k, -0.5, 0.3))
+           for k in range(5)]
+for _ in range(20):
+    manifold3d.Manifold.batch_boolean([box, *cutters], manifold3d.OpType.Subtract).num_vert()
+print(len(os.listdir('/proc/self/task')), len(os.sched_getaffinity(0)))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux")
+                    or len(getattr(os, "sched_getaffinity", lambda _: ())(0)) < 2,
+                    reason="needs Linux's thread list and two CPUs to run on")
+def test_manifold_computes_on_the_calling_thread_only():
+    env = dict(os.environ, PYTHONPATH=str(ROOT), OPENBLAS_NUM_THREADS="1")
+    done = subprocess.run([sys.executable, "-c", _MANIFOLD_PROBE], cwd=ROOT, env=env,
+                          capture_output=True, text=True, timeout=120, check=True)
+    threads, cpus = map(int, done.stdout.split())
+    assert threads == 1  # no task-arena worker beside the main thread
+    assert cpus == len(os.sched_getaffinity(0))  # the thread got its CPUs back
+
+
+def test_first_use_runs_on_one_cpu_then_the_cpus_come_back():
+    if not hasattr(os, "sched_getaffinity"):
+        pytest.skip("no CPU affinity on this platform")
+    before = os.sched_getaffinity(0)
+    seen = first_use_on_one_cpu(lambda: os.sched_getaffinity(0))
+    assert len(seen) == 1 and seen <= before
+    assert os.sched_getaffinity(0) == before
+
+
+def test_first_use_runs_where_cpus_cannot_be_set(monkeypatch):
+    def refuse(*_):
+        raise OSError("not permitted")
+
+    monkeypatch.setattr(os, "sched_setaffinity", refuse)
+    assert first_use_on_one_cpu(lambda: "ran") == "ran"
