@@ -151,7 +151,8 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
     the costly tests (off the corridors, :meth:`_Room.fits`: two polygon overlays and an
     opening) are made in rank order, once per rectangle, until three pass: the same
     pick as testing them all, at a fraction of the tests. The rankings' own geometry is
-    computed for all candidates at once. O(edges × positions) shapely operations.
+    computed for all candidates at once. O(edges × positions) shapely operations, once
+    per footprint in a process (:func:`_best_places`).
     """
     params.check()
     risers, rise = design_risers(storey_height, params.max_rise, params.kind)
@@ -164,30 +165,10 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
     stair_breadth = core.interior_width + 2 * wall
     length = _up(core.interior_length + 2 * wall)
     breadth = _up(stair_breadth)
-    free = _free_region(footprint, corridors)
-    room = _Room.of(footprint, free, min_width)
-    corners, along, across = _sites(footprint, corridors, length, min_width)
-    reaches = _reaches(room.edges, corners, along, across, length, breadth + min_width)
-    found = _Candidates.of(corners, along, across, reaches, length=length, breadth=breadth,
-                           min_width=min_width, stair_breadth=stair_breadth, wall=wall)
-    # the landing's long side is an outer wall: no door there
-    faces_in = shapely.contains(footprint, shapely.points(found.at(depth / 2, stair_breadth)))
-    keys = _ranks(found, np.flatnonzero(faces_in), footprint, corridors, free, depth=depth,
-                  wall=wall, door_width=door_width, interior_width=core.interior_width)
-    best: list[int] = []
-    passes: dict[int, bool] = {}
-    for k in sorted(keys, key=keys.__getitem__):
-        r = int(found.rect[k])
-        if r not in passes:
-            rect = found.rects[r]
-            passes[r] = (not any(rect.intersects(c) and rect.intersection(c).area > 1e-9
-                                 for c in corridors) and room.fits(rect))
-        if passes[r]:
-            if best and keys[k][:2] != keys[best[0]][:2]:
-                break  # the draw is among places as good on the landing and the frontage
-            best.append(k)
-            if len(best) == 3:
-                break
+    found, best = _best_places(footprint, tuple(corridors), _Sizes(
+        length=length, breadth=breadth, stair_breadth=stair_breadth, depth=depth,
+        interior_width=core.interior_width, wall=wall, door_width=door_width,
+        min_width=min_width))
     if not best:
         minx, minz, maxx, maxz = footprint.bounds
         raise DerivationError(
@@ -202,6 +183,79 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
                    origin=(float(origin[0]), float(origin[1])), u=(float(u[0]), float(u[1])),
                    v=(float(v[0]), float(v[1])))
 
+
+
+@dataclass(frozen=True)
+class _Sizes:
+    """The sizes (m) a core's places depend on besides the footprint and corridors."""
+
+    length: float
+    breadth: float
+    stair_breadth: float
+    depth: float
+    interior_width: float
+    wall: float
+    door_width: float
+    min_width: float
+
+
+_PLACES: dict[tuple[bytes, tuple[bytes, ...], _Sizes], tuple["_Candidates", tuple[int, ...]]] = {}
+_PLACES_KEPT = 16
+"""Footprints whose best places a process keeps (:func:`_best_places`)."""
+
+
+def _best_places(footprint: Polygon, corridors: tuple[Polygon, ...], sizes: _Sizes
+                 ) -> tuple["_Candidates", tuple[int, ...]]:
+    """The candidates of :func:`place_core` and the best three that pass (by index,
+    best first; fewer when fewer pass, none when no place does), kept per process by
+    the footprint's and corridors' exact coordinates and the sizes.
+
+    They depend on nothing else, not on the seed: a batch builds one grammar's lot
+    seed after seed, and each house would rank the same few hundred places again
+    (about 5 % of a house's build without the checks). Only the draw among them is the
+    seed's."""
+    key = (footprint.wkb, tuple(c.wkb for c in corridors), sizes)
+    kept = _PLACES.pop(key, None)
+    if kept is None:
+        kept = _rank_places(footprint, corridors, sizes)
+        if len(_PLACES) >= _PLACES_KEPT:
+            _PLACES.pop(next(iter(_PLACES)))
+    _PLACES[key] = kept  # most recently used last
+    return kept
+
+
+def _rank_places(footprint: Polygon, corridors: tuple[Polygon, ...], sizes: _Sizes
+                 ) -> tuple["_Candidates", tuple[int, ...]]:
+    """:func:`_best_places`, computed."""
+    length, breadth, min_width = sizes.length, sizes.breadth, sizes.min_width
+    free = _free_region(footprint, corridors)
+    room = _Room.of(footprint, free, min_width)
+    corners, along, across = _sites(footprint, corridors, length, min_width)
+    reaches = _reaches(room.edges, corners, along, across, length, breadth + min_width)
+    found = _Candidates.of(corners, along, across, reaches, length=length, breadth=breadth,
+                           min_width=min_width, stair_breadth=sizes.stair_breadth,
+                           wall=sizes.wall)
+    # the landing's long side is an outer wall: no door there
+    faces_in = shapely.contains(footprint, shapely.points(found.at(sizes.depth / 2,
+                                                                   sizes.stair_breadth)))
+    keys = _ranks(found, np.flatnonzero(faces_in), footprint, corridors, free,
+                  depth=sizes.depth, wall=sizes.wall, door_width=sizes.door_width,
+                  interior_width=sizes.interior_width)
+    best: list[int] = []
+    passes: dict[int, bool] = {}
+    for k in sorted(keys, key=keys.__getitem__):
+        r = int(found.rect[k])
+        if r not in passes:
+            rect = found.rects[r]
+            passes[r] = (not any(rect.intersects(c) and rect.intersection(c).area > 1e-9
+                                 for c in corridors) and room.fits(rect))
+        if passes[r]:
+            if best and keys[k][:2] != keys[best[0]][:2]:
+                break  # the draw is among places as good on the landing and the frontage
+            best.append(k)
+            if len(best) == 3:
+                break
+    return found, tuple(best)
 
 @dataclass(frozen=True)
 class _Candidates:

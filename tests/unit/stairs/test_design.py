@@ -133,3 +133,43 @@ def test_a_core_in_a_bay_too_shallow_for_a_room_beside_it_fills_the_bay():
         inside = core.rect(0, core.interior_length, 0, core.interior_width)
         assert core.interior.buffer(1e-6).covers(inside)
         assert core.interior.area > inside.area + 1.0
+
+
+def test_a_lot_placed_again_gets_the_places_it_got_the_first_time(monkeypatch):
+    """The ranking is kept per process by the exact footprint, corridors and sizes; a
+    seed only draws among the best places, so every seed of a kept lot draws the core
+    it would draw from a fresh ranking, and a lot that differs is ranked afresh."""
+    from cga.operations.stairs import design
+
+    footprint, corridor = box(0, 0, 14, 10), box(0, 4.2, 14, 5.8)
+    kwargs = dict(wall=0.2, door_width=0.9, min_width=2.0, corridors=[corridor])
+    ranked = []
+    rank = design._rank_places
+    monkeypatch.setattr(design, "_PLACES", {})
+    monkeypatch.setattr(design, "_rank_places", lambda *a: ranked.append(a) or rank(*a))
+    first = [place_core(footprint, 3.0, 2, StairParams(), rng=np.random.default_rng(seed),
+                        **kwargs) for seed in range(6)]
+    assert len(ranked) == 1
+    assert len({(c.origin, c.u) for c in first}) > 1  # the seeds draw different places
+    fresh = []
+    for seed in range(6):
+        design._PLACES.clear()
+        fresh.append(place_core(footprint, 3.0, 2, StairParams(),
+                                rng=np.random.default_rng(seed), **kwargs))
+    assert fresh == first and len(ranked) == 7
+    place_core(box(0, 0, 14, 10.5), 3.0, 2, StairParams(), rng=np.random.default_rng(0),
+               **kwargs)
+    place_core(footprint, 3.0, 2, StairParams(width=1.2), rng=np.random.default_rng(0),
+               **kwargs)
+    assert len(ranked) == 9  # another lot and another stair are ranked afresh
+    for size in range(design._PLACES_KEPT + 4):  # the process keeps a bounded number
+        place_core(box(0, 0, 14 + size, 10), 3.0, 2, StairParams(),
+                   rng=np.random.default_rng(0), wall=0.2, door_width=0.9, min_width=2.0)
+    assert len(design._PLACES) == design._PLACES_KEPT
+
+
+def test_a_lot_with_no_place_is_refused_every_time():
+    for _ in range(2):
+        with pytest.raises(DerivationError, match="no place for a U stair core"):
+            place_core(box(0, 0, 5, 4), 3.0, 2, StairParams(), wall=0.2, door_width=0.9,
+                       min_width=2.4, rng=np.random.default_rng(0))
