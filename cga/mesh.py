@@ -68,7 +68,15 @@ class TriangleMesh:
         """``[[min x, min y, min z], [max x, max y, max z]]`` of the vertices the faces
         use (trimesh's definition), ``float[2, 3]``."""
         if self._bounds is None:
-            used = self.vertices[self.faces.ravel()] if len(self.faces) else self.vertices
+            used = self.vertices
+            if len(self.faces):
+                # the vertices the faces name, each once: numpy reduces a copy per face
+                # corner along its rows several times slower, and a mesh uses them all
+                # but for the odd leftover
+                named = np.zeros(len(used), dtype=bool)
+                named[self.faces.ravel()] = True
+                if not named.all():
+                    used = used[named]
             if not len(used):
                 raise ValueError("an empty mesh has no bounds")
             self._bounds = np.array([used.min(axis=0), used.max(axis=0)])
