@@ -30,6 +30,8 @@ from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from .paths import is_below, relative_text
+
 __all__ = ["DIGEST_HEX", "SHIPPED_PACKAGES", "note_input", "recording", "file_digest",
            "input_label", "label_path", "provenance", "RecordedInputs"]
 
@@ -99,15 +101,17 @@ def _shipped_folders() -> dict[str, Path]:
 
 
 def input_label(path: str | Path, grammar_dir: Path) -> str:
-    """The portable name of a file a build read (see the module notes)."""
-    real = Path(os.path.realpath(path))
+    """The portable name of a file a build read (see the module notes).
+
+    Worked out on the real paths' text (:mod:`cga.paths`)."""
+    real = os.path.realpath(path)
     for package, folder in _shipped_folders().items():
-        if real.is_relative_to(folder):
-            return f"{package}/{real.relative_to(folder).as_posix()}"
-    base = Path(os.path.realpath(grammar_dir))
-    if real.is_relative_to(base):
-        return real.relative_to(base).as_posix()
-    return str(real)
+        if is_below(real, folder):
+            return f"{package}/{relative_text(real, str(folder))}"
+    base = os.path.realpath(grammar_dir)
+    if is_below(real, base):
+        return relative_text(real, base)
+    return real
 
 
 def label_path(label: str, grammar_dir: Path) -> Path:

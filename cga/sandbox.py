@@ -22,12 +22,12 @@ is then simply not a file).
 
 from __future__ import annotations
 
-import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import PATH_LIMIT, ResourceAccessError, UsageError, excerpt
+from .paths import is_below, real_path
 from .resources import is_folder, shipped_dir
 
 __all__ = ["ALLOW_OPTION", "Sandbox", "real_path"]
@@ -36,20 +36,6 @@ _ALLOWED = "allowed with --allow-path"
 
 ALLOW_OPTION = "--allow-path DIR (Python: allow_paths=[DIR])"
 """How a refused file is allowed, as error messages say it."""
-
-
-def real_path(path: str | Path) -> Path:
-    """``path`` absolute with every symbolic link and ``..`` resolved (never raises on loops)."""
-    return Path(os.path.realpath(os.path.abspath(path)))
-
-
-def _inside(path: Path, root: Path) -> bool:
-    """Whether ``path`` is ``root`` or lies below it; both are real paths (absolute and
-    normalised, :func:`real_path`), so this compares their text, which is what
-    ``root in path.parents`` compares part by part, at a fraction of the cost (a build
-    asks for every model file it loads)."""
-    text, top = str(path), str(root)
-    return text == top or text.startswith(top if top.endswith(os.sep) else top + os.sep)
 
 
 @dataclass(frozen=True)
@@ -105,7 +91,7 @@ class Sandbox:
             real = real_path(path)
         except ValueError:  # a NUL byte: no file of the OS has that name
             return False
-        return any(_inside(real, root) for root in self.folders)
+        return any(is_below(real, root) for root in self.folders)
 
     def check(self, path: str | Path, what: str, written: str | None = None) -> Path:
         """``path`` if it lies inside an allowed folder.
