@@ -567,6 +567,13 @@ class Layout:
                     break
         return tuple(found)
 
+    def blocked_by_room(self, spec: ItemSpec, pose: Pose) -> bool:
+        """Whether the room itself (walls, door zones, windows) blocks ``spec`` at
+        ``pose``: :meth:`conflicts` of an empty layout without the passage rule, which
+        holds in every layout of the room."""
+        assert not self.placed
+        return bool(self._blockers(self._index(), spec, pose, frozenset(), True))
+
     def fits(self, spec: ItemSpec, pose: Pose, related: frozenset[str] = frozenset()) -> bool:
         """True when nothing blocks ``spec`` at ``pose``."""
         return not self.conflicts(spec, pose, related, first=True)

@@ -32,6 +32,7 @@ import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 from shapely.geometry import Polygon
@@ -188,6 +189,19 @@ def flush(bbox: Box, normal: np.ndarray, line: float) -> tuple[int, float]:
     if normal[axis] > 0:
         return axis, line - bbox[axis]
     return axis, line - bbox[axis + 2]
+
+
+class _Stretch(NamedTuple):
+    """A wall a wall item may slide along: its turn, the axis it slides along, its
+    centre's fixed coordinate across it, the range of the sliding coordinate and the
+    point of that range nearest the item's start."""
+
+    rotation: int
+    axis: int
+    fixed: float
+    lo: float
+    hi: float
+    preferred: float
 
 
 class Placer:
@@ -391,6 +405,19 @@ class Placer:
         return (c.x, c.y)
 
     # -- parents and single items --------------------------------------------------------
+    def _corner_poses(self, spec: ItemSpec, start: tuple[float, float]) -> Iterator[Pose]:
+        """``spec`` in each convex corner, nearest ``start`` first, its back against
+        either wall, flush with both after its clearances."""
+        for corner in sorted(self.corners, key=lambda c: math.dist(c.vertex, start)):
+            for back_edge in corner.edges:
+                rotation = back_edge.facing
+                bbox = spec.extent(rotation)
+                coords = [0.0, 0.0]
+                for edge in corner.edges:
+                    axis, value = flush(bbox, edge.normal, edge.line)
+                    coords[axis] = value
+                yield Pose(coords[0], coords[1], rotation)
+
     def corner(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
         """Put ``spec`` in the nearest free corner, trying both orientations."""
         if not self.corners:
@@ -398,20 +425,12 @@ class Placer:
         blocked: list[Conflict] = []
 
         def poses() -> Iterator[Pose]:
-            for corner in sorted(self.corners, key=lambda c: math.dist(c.vertex, start)):
-                for back_edge in corner.edges:
-                    rotation = back_edge.facing
-                    bbox = spec.extent(rotation)
-                    coords = [0.0, 0.0]
-                    for edge in corner.edges:
-                        axis, value = flush(bbox, edge.normal, edge.line)
-                        coords[axis] = value
-                    pose = Pose(coords[0], coords[1], rotation)
-                    conflict = self._conflict(spec, pose)
-                    if conflict is None:
-                        yield pose
-                    else:
-                        blocked.append(conflict)
+            for pose in self._corner_poses(spec, start):
+                conflict = self._conflict(spec, pose)
+                if conflict is None:
+                    yield pose
+                else:
+                    blocked.append(conflict)
 
         if self._commit(spec, poses()):
             return None
@@ -422,8 +441,11 @@ class Placer:
             return [edge.facing]
         return list(edge.along)
 
-    def along_wall(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
-        """Put ``spec`` against the nearest wall with room, at the spot nearest ``start``."""
+    def _wall_stretches(self, spec: ItemSpec, start: tuple[float, float]
+                        ) -> tuple[list[_Stretch], float] | str:
+        """Where ``spec`` may slide with its back (a side, for ``needsTurn``) against a
+        wall long enough for it, nearest wall to ``start`` first, and the least wall
+        length it needs; or why there is no such wall."""
         candidates = []
         for edge in self.edges:
             if edge.axis is None:
@@ -438,21 +460,31 @@ class Placer:
                         key=lambda c: c[0].distance_to(start))
         if not usable:
             return f"no wall long enough for {spec.name} (needs {need:.2f} m)"
+        stretches = []
+        for edge, rotation, _ in usable:
+            axis = edge.axis
+            assert axis is not None
+            body = spec.parts(rotation)[0].box
+            _, fixed = flush(spec.extent(rotation), edge.normal, edge.line)
+            lo, hi = edge.span
+            lo, hi = lo - body[axis], hi - body[axis + 2]
+            stretches.append(_Stretch(rotation, axis, fixed, lo, hi,
+                                      min(max(start[axis], lo), hi)))
+        return stretches, need
+
+    def along_wall(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
+        """Put ``spec`` against the nearest wall with room, at the spot nearest ``start``."""
+        found = self._wall_stretches(spec, start)
+        if isinstance(found, str):
+            return found
+        stretches, need = found
         blocked: list[Conflict] = []
 
         def poses() -> Iterator[Pose]:
             # first the spot nearest the start on each wall, nearest wall first; then, for
             # a parent whose children did not fit, the ends and middles of the free stretches
             later: list[Pose] = []
-            for edge, rotation, _ in usable:
-                axis = edge.axis
-                assert axis is not None
-                parts = spec.parts(rotation)
-                body = parts[0].box
-                _, fixed = flush(spec.extent(rotation), edge.normal, edge.line)
-                lo, hi = edge.span
-                lo, hi = lo - body[axis], hi - body[axis + 2]
-                preferred = min(max(start[axis], lo), hi)
+            for rotation, axis, fixed, lo, hi, preferred in stretches:
                 related = self.related.get(spec.name, frozenset())
                 intervals = self.layout.free_intervals(spec, rotation, axis, fixed, lo, hi,
                                                        related)
@@ -479,6 +511,28 @@ class Placer:
             return None
         reason = f"no free wall long enough for {spec.name} ({need:.2f} m)"
         return f"{reason}; nearest wall: {blocked[0].describe()}" if blocked else reason
+
+    def never_fits(self, spec: ItemSpec) -> bool:
+        """Whether the room itself (its walls, door zones and windows) blocks every
+        place a corner or wall item's strategy can try, so that no layout, whatever
+        else it holds, takes ``spec``: other items and the passage rule only ever add
+        conflicts to a pose the room blocks, and a wall item's free stretches only
+        shrink. False for the other strategies. Asked of an empty layout.
+
+        The solver stops retrying a room once an attempt places all but such items
+        (and their children): no later attempt could place more."""
+        assert not self.layout.placed
+        strategy = self._strategy(spec)
+        centre = self._room_centre()  # any start: it only orders the places
+        if strategy == "corner":
+            return all(self.layout.blocked_by_room(spec, pose)
+                       for pose in self._corner_poses(spec, centre))
+        if strategy != "wall":
+            return False
+        found = self._wall_stretches(spec, centre)
+        return isinstance(found, str) or not any(
+            self.layout.free_intervals(spec, s.rotation, s.axis, s.fixed, s.lo, s.hi)
+            for s in found[0])
 
     def free(self, spec: ItemSpec, start: tuple[float, float]) -> str | None:
         """Put a free-standing item (a dining or meeting table) at the free spot nearest

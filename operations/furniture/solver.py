@@ -225,6 +225,45 @@ def _solve_once(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Genera
     return placer, left_out
 
 
+class _Unbeatable:
+    """Whether an attempt's result can be beaten at all, as far as the room itself tells
+    (:meth:`.placement.Placer.never_fits`): when every item it left out is a corner or
+    wall item the room blocks everywhere, or a child of one, no later attempt can place
+    more, and the solver stops retrying (half a house's furnishing was attempts after
+    the first that placed no more).
+
+    Stopping early leaves the room's random stream where it is, so only rooms that draw
+    nothing after their attempts are judged: no item disordered (``disorder``, a row's
+    own), no desk rows (whose layouts of every attempt are reported). The items are
+    tested on an empty layout of the room when first left out."""
+
+    def __init__(self, room: tuple[Layout, list[Edge], _Movers | None],
+                 specs: Sequence[ItemSpec], groups: _Copies, disorder: float):
+        noisy = any((disorder if s.rule.disorder is None else s.rule.disorder) > 0
+                    for s in specs)
+        self.judged = not (noisy or groups.families or groups.extra)
+        self.room, self.specs = room, specs
+        self.parent = {s.name: s.rule.pair_with for s in specs}
+        self._never: dict[str, bool] = {}
+        self._probe: Placer | None = None
+
+    def __call__(self, left_out: Sequence[tuple[str, str]]) -> bool:
+        return self.judged and all(self._never_placed(name) for name, _ in left_out)
+
+    def _never_placed(self, name: str) -> bool:
+        parent = self.parent.get(name)
+        if parent is not None:
+            return self._never_placed(parent)
+        never = self._never.get(name)
+        if never is None:
+            if self._probe is None:
+                self._probe = Placer(self.room[0].emptied(), self.specs,
+                                     np.random.default_rng(0), self.room[1])
+            spec = next(s for s in self.specs if s.name == name)
+            never = self._never[name] = self._probe.never_fits(spec)
+        return never
+
+
 def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Generator, *,
                  steering_iterations: int = 10, attempts: int = 20,
                  patience: int = PATIENCE, passage_width: float = PASSAGE_WIDTH,
@@ -284,6 +323,7 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
             room_edges(site.interior), _movers(site, specs, groups))
     best: tuple[Placer, list[tuple[str, str]]] | None = None
     desk_layouts: dict[tuple[str, tuple[tuple[str, Pose], ...]], DeskLayout] = {}
+    unbeatable = _Unbeatable(room, specs, groups, disorder)
     stale = 0
     for _ in range(max(1, attempts)):
         placer, left_out = _solve_once(site, specs, rng, steering_iterations, room, groups,
@@ -293,7 +333,7 @@ def furnish_room(site: RoomSite, specs: Sequence[ItemSpec], rng: np.random.Gener
             best, stale = (placer, left_out), 0
         else:
             stale += 1
-        if not left_out or stale >= patience:
+        if not left_out or stale >= patience or unbeatable(best[1]):
             break
     assert best is not None
     placer, left_out = best

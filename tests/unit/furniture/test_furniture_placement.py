@@ -231,3 +231,49 @@ def test_side_normals_are_those_made_from_the_front_vector():
         got = Placer._sides(Pose(0.0, 0.0, rotation))
         assert [v.tobytes() for v in got] == [v.tobytes() for v in (f, -f, s, -s)]
         assert not any(v.flags.writeable for v in got)
+
+
+# -- items the room itself keeps out -----------------------------------------------------
+
+def test_never_fits_names_the_items_the_room_blocks_everywhere():
+    organ = spec("organ", (6.0, 0.5), is_along_wall=True)  # longer than every wall
+    lamp = spec("lamp", (0.4, 0.3), is_in_corner=True)
+    swings = [Keepout(f"the swing of door {k}", box(x, z, x + 1.0, z + 1.0))
+              for k, (x, z) in enumerate([(0, 0), (4, 0), (4, 3), (0, 3)])]
+    sofa = spec("sofa", (2.5, 0.9), is_along_wall=True)
+    table = spec("table", (1.0, 1.0))
+    p = placer([organ, lamp, sofa, table], keepouts=swings)
+    assert p.never_fits(organ) and p.never_fits(lamp)  # every corner in a door's swing
+    assert not p.never_fits(sofa)  # fits in the 3 m between the swings on a 5 m wall
+    assert p.never_fits(spec("long", (3.5, 0.9), is_along_wall=True))  # does not
+    assert not p.never_fits(table)  # free items are never judged
+    assert not placer([lamp]).never_fits(lamp)
+
+
+@settings(max_examples=80, deadline=None)
+@given(width=st.floats(1.5, 5.0), depth=st.floats(1.5, 5.0),
+       size=st.tuples(st.floats(0.3, 4.5), st.floats(0.3, 1.2)),
+       corner=st.booleans(), needs_turn=st.booleans(), clearance=st.floats(0.0, 0.8),
+       doors=st.lists(st.tuples(st.floats(0.0, 1.0), st.floats(0.6, 2.0)), max_size=6))
+def test_never_fits_is_exactly_the_empty_room_refusing_the_item(width, depth, size, corner,
+                                                                  needs_turn, clearance, doors):
+    """Without other items or a passage rule, the strategy itself is the checker: it
+    places the item in the empty room exactly when the room does not block it
+    everywhere; and a room that blocks it empty blocks it beside any other item."""
+    room = box(0, 0, width, depth)
+    rule = {"is_in_corner": True} if corner else {"is_along_wall": True,
+                                                  "needs_turn": needs_turn}
+    thing = spec("thing", size, clearance_front=clearance, **rule)
+    ring = room.exterior
+    keepouts = [Keepout(f"the way through door {k}",
+                        ring.interpolate(at, normalized=True).buffer(wide / 2, cap_style=3)
+                        .intersection(room))
+                for k, (at, wide) in enumerate(doors)]
+    probe = placer([thing], room=room, keepouts=keepouts)
+    never = probe.never_fits(thing)
+    empty = placer([thing], room=room, keepouts=keepouts)
+    assert (empty.place(thing, (width / 3, depth / 3)) is not None) == never
+    if never:
+        crowded = placer([thing], room=room, keepouts=keepouts)
+        crowded.layout.add(spec("post", (0.2, 0.2)), Pose(width / 2, depth / 2, 0))
+        assert crowded.place(thing, (width / 3, depth / 3)) is not None

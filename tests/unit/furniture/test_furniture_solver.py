@@ -150,14 +150,20 @@ def _run_to_the_end(solve_once):
 def test_attempts_given_up_early_give_the_same_furniture(monkeypatch, library, kind, disorder,
                                                          typed_floors):
     """The solver passes over the rest of an attempt that can no longer place more items
-    than its best one. Its floors must be those of running every attempt to the end (the
-    later attempts of a room and its disorder draw from the same stream), and the
-    shortcut must be taken on the house floors, or the comparison proves nothing."""
+    than its best one, and stops retrying a room whose best attempt left out only items
+    the room itself blocks. Its floors must be those of running every attempt to the end
+    (the later attempts of a room and its disorder draw from the same stream), and both
+    shortcuts must be taken on the tidy house floors, or the comparison proves nothing."""
     passed_over = []
     pass_over = placement.Placer.pass_over
     monkeypatch.setattr(placement.Placer, "pass_over",
                         lambda self, spec: (passed_over.append(spec.name),
                                             pass_over(self, spec))[1])
+    stopped = []
+    unbeatable = solver._Unbeatable.__call__
+    monkeypatch.setattr(solver._Unbeatable, "__call__",
+                        lambda self, left_out: stopped.append(unbeatable(self, left_out))
+                        or stopped[-1])
     floors = 0
     for seed in range(1, 46):
         floor = typed_hall_floor(kind, seed)
@@ -166,9 +172,11 @@ def test_attempts_given_up_early_give_the_same_furniture(monkeypatch, library, k
         typed, table = floor
         floors += 1
         furnished = []
-        for solve_once in (solver._solve_once, _run_to_the_end(solver._solve_once)):
+        for shortcuts in (True, False):
             with monkeypatch.context() as patch:
-                patch.setattr(solver, "_solve_once", solve_once)
+                if not shortcuts:
+                    patch.setattr(solver, "_solve_once", _run_to_the_end(solver._solve_once))
+                    patch.setattr(solver._Unbeatable, "__call__", lambda self, left_out: False)
                 furnished.append(furnish_floor(typed, table, seed=seed, disorder=disorder,
                                                library=library))
         shortcut, full = furnished
@@ -177,6 +185,8 @@ def test_attempts_given_up_early_give_the_same_furniture(monkeypatch, library, k
     assert floors >= typed_floors  # office typing fails on most of these floors
     if kind == "house":
         assert len(passed_over) > 20
+        # a disordered room draws after its attempts, so it never stops early
+        assert sum(stopped) >= 5 if disorder == 0 else not any(stopped)
 
 
 def test_a_free_item_passed_over_takes_its_draws(monkeypatch, room_plan, library):
@@ -196,6 +206,8 @@ def test_a_free_item_passed_over_takes_its_draws(monkeypatch, room_plan, library
     monkeypatch.setattr(placement.Placer, "pass_over",
                         lambda self, spec: (passed_over.append(spec.name),
                                             pass_over(self, spec))[1])
+    # the table never fits the room, which would stop the retries after the first attempt
+    monkeypatch.setattr(solver._Unbeatable, "__call__", lambda self, left_out: False)
     outcomes = []
     for solve_once in (solver._solve_once, _run_to_the_end(solver._solve_once)):
         with monkeypatch.context() as patch:
