@@ -167,7 +167,10 @@ class _State:
 
     A state made from the one a box smaller keeps it as ``parent`` with the grown box
     ``added``. The floor's verdict and pieces, the obstacles' clusters and the step from
-    the parent are made when first asked for."""
+    the parent are made when first asked for. ``less`` keeps, by grown candidate box, the
+    floor less the box with its pieces and verdict where a candidate's test computed them
+    exactly: the state that adds the candidate is made from them, not again (the solver
+    adds most items right after testing them)."""
 
     floor: BaseGeometry
     key: frozenset[Box]
@@ -178,6 +181,8 @@ class _State:
     with_candidate: dict[Box, Blockage | None] = field(default_factory=dict)
     obstacles: _Obstacles | None = None
     step: _Step | None = None
+    less: dict[Box, tuple[BaseGeometry, _Pieces, Blockage | None]] = field(
+        default_factory=dict)
 
 
 class Passage:
@@ -285,8 +290,10 @@ class Passage:
         if not state.floor.intersects(box):
             pieces, verdict = self._pieces(state), self._state_verdict(state)
         else:
-            pieces = self._exact(state.floor.difference(box))
+            less = state.floor.difference(box)
+            pieces = self._exact(less)
             verdict = self._judge(pieces)
+            state.less[grown] = (less, pieces, verdict)
         self._last[candidate] = (state, pieces, met)
         return verdict
 
@@ -464,6 +471,9 @@ class Passage:
             smaller = smaller_by.get(footprint)
             if smaller is not None:
                 grown = self._grown(footprint)
+                tested = smaller.less.get(grown)
+                if tested is not None:  # the same difference, its pieces and verdict
+                    return _State(tested[0], key, smaller, grown, tested[2], tested[1])
                 box = shapely.box(*grown)
                 if not smaller.floor.intersects(box):
                     return _State(smaller.floor, key, smaller, grown, smaller.verdict,

@@ -84,6 +84,41 @@ def test_the_verdict_does_not_depend_on_what_was_asked_before():
 
 
 
+def test_a_set_made_from_a_tested_candidate_gets_the_verdicts_of_one_made_afresh(
+        monkeypatch):
+    """The solver adds most items right after testing them. The set with the item is then
+    made from the candidate's own difference, pieces and verdict instead of a second GEOS
+    difference, and every verdict on it is the one a fresh rule gives."""
+    from shapely.geometry.base import BaseGeometry
+
+    differences = []
+    difference = BaseGeometry.difference
+    monkeypatch.setattr(BaseGeometry, "difference",
+                        lambda self, *args: differences.append(1) or difference(self, *args))
+    rng = np.random.default_rng(11)
+    shared = Passage(ROOM, [BOTTOM, TOP], 0.6)
+    placed: list = []
+    tests = 0
+    for _ in range(12):  # below the count from which candidates are updated locally
+        x, z = rng.uniform(0, 4.5), rng.uniform(0, 3.6)
+        candidate = (x, z, x + rng.uniform(0.2, 0.5), z + rng.uniform(0.2, 0.4))
+        verdict = shared.blockage(placed, candidate)
+        tests += 1
+        with monkeypatch.context() as fresh_rule:
+            fresh_rule.setattr(BaseGeometry, "difference", difference)
+            assert verdict == Passage(ROOM, [BOTTOM, TOP], 0.6).blockage(placed, candidate)
+        if verdict is None:
+            placed.append(candidate)
+            probe = (0.0, 0.0, 0.01, 0.01)  # asks for the set with the candidate
+            tests += 1
+            with monkeypatch.context() as fresh_rule:
+                fresh_rule.setattr(BaseGeometry, "difference", difference)
+                expected = Passage(ROOM, [BOTTOM, TOP], 0.6).blockage(placed, probe)
+            assert shared.blockage(placed, probe) == expected
+    assert len(placed) >= 6
+    assert len(differences) <= tests  # one difference per test, none to make the sets
+
+
 def test_a_candidate_asked_again_is_looked_up_for_its_own_obstacles(monkeypatch):
     passage = Passage(ROOM, [BOTTOM, TOP], 0.6)
     left, right = (0.0, 1.8, 2.6, 2.4), (2.9, 1.8, 5.0, 2.4)  # a row with a 0.3 m gap
