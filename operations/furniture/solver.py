@@ -243,7 +243,7 @@ class _Unbeatable:
                     for s in specs)
         self.judged = not (noisy or groups.families or groups.extra)
         self.room, self.specs = room, specs
-        self.parent = {s.name: s.rule.pair_with for s in specs}
+        self.by_name = {s.name: s for s in specs}
         self._never: dict[str, bool] = {}
         self._probe: Placer | None = None
 
@@ -251,15 +251,14 @@ class _Unbeatable:
         return self.judged and all(self._never_placed(name) for name, _ in left_out)
 
     def _never_placed(self, name: str) -> bool:
-        parent = self.parent.get(name)
-        if parent is not None:
-            return self._never_placed(parent)
+        spec = self.by_name[name]
+        if spec.rule.pair_with is not None:
+            return self._never_placed(spec.rule.pair_with)
         never = self._never.get(name)
         if never is None:
             if self._probe is None:
                 self._probe = Placer(self.room[0].emptied(), self.specs,
                                      np.random.default_rng(0), self.room[1])
-            spec = next(s for s in self.specs if s.name == name)
             never = self._never[name] = self._probe.never_fits(spec)
         return never
 
