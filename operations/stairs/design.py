@@ -184,7 +184,6 @@ def place_core(footprint: Polygon, storey_height: float, storeys: int, params: S
                    v=(float(v[0]), float(v[1])))
 
 
-
 @dataclass(frozen=True)
 class _Sizes:
     """The sizes (m) a core's places depend on besides the footprint and corridors."""
@@ -213,7 +212,11 @@ def _best_places(footprint: Polygon, corridors: tuple[Polygon, ...], sizes: _Siz
     They depend on nothing else, not on the seed: a batch builds one grammar's lot
     seed after seed, and each house would rank the same few hundred places again
     (about 5 % of a house's build without the checks). Only the draw among them is the
-    seed's."""
+    seed's.
+
+    Keyed by the geometries' WKB, not by the geometries: shapely calls two polygons
+    equal whatever vertex their rings start at and whichever way they turn, and those
+    order the candidates, which breaks ties between equally good places."""
     key = (footprint.wkb, tuple(c.wkb for c in corridors), sizes)
     kept = _PLACES.pop(key, None)
     if kept is None:
@@ -256,6 +259,7 @@ def _rank_places(footprint: Polygon, corridors: tuple[Polygon, ...], sizes: _Siz
             if len(best) == 3:
                 break
     return found, tuple(best)
+
 
 @dataclass(frozen=True)
 class _Candidates:
