@@ -11,8 +11,12 @@ of every other opening in it:
 * windows and doors already in the wall are kept :data:`DOOR_MARGIN` away.
 
 The leaf is hinged at the jamb nearer the wall's closer end, so the open leaf rests
-along the wall that meets there, and swings into the bigger of the two rooms (a front
-door into its room), unless the quarter circle it sweeps only fits the other room.
+along the wall that meets there. It swings out of circulation into the room (a front
+door into its room), as doors are hung: open leaves then neither narrow a hall or
+corridor nor meet one another across it (with the bigger room taking the swing, a
+hall's doors swung into the hall, and those facing each other across 1.5 m met).
+Between two rooms, or two circulation spaces, it swings into the bigger one. Either way
+it swings into the other room when the quarter circle it sweeps only fits there.
 """
 
 from __future__ import annotations
@@ -206,18 +210,19 @@ def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
 
     ``rooms`` are the two rooms it joins (the second is :data:`~cga.model.OUTSIDE` for
     the front door, which opens into the first). The hinge is the jamb nearer the
-    wall's closer end; the leaf swings into the bigger room unless its sweep only fits
-    the other one.
+    wall's closer end; the leaf swings out of circulation into the room, else into the
+    bigger room, unless its sweep only fits the other one (module notes).
     """
     settings = plan.settings
     hinge: Literal["start", "end"] = "start" if centre <= wall.length / 2 else "end"
     if OUTSIDE in rooms:
         swing_room = rooms[0] if rooms[1] == OUTSIDE else rooms[1]
     else:
-        by_size = sorted((plan.room(r) for r in rooms), key=lambda r: (-r.area, r.id))
-        swing_room = next((r.id for r in by_size if _sweep_fits(
+        preferred = sorted((plan.room(r) for r in rooms),
+                           key=lambda r: (r.circulation, -r.area, r.id))
+        swing_room = next((r.id for r in preferred if _sweep_fits(
             r, wall, centre, settings.door_width, hinge)),
-            by_size[0].id)
+            preferred[0].id)
     return Door(id=door_id, wall=wall.id, rooms=rooms, position=wall.point_at(centre),
                 width=settings.door_width, height=settings.door_height,
                 swing_room=swing_room, hinge=hinge, is_front=reason == "front",

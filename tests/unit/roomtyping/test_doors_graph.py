@@ -214,3 +214,23 @@ def test_leaf_swings_into_the_smaller_room_when_the_bigger_is_too_narrow():
     assert typed.room(0).area > typed.room(1).area
     assert door.swing_room == 1
     assert typed.room(1).interior.buffer(1e-6).covers(door_swing(door, typed))
+
+
+def test_doors_swing_out_of_the_hall_into_the_rooms_it_serves():
+    # a 22 m² hall, bigger than every room it serves
+    from cga.authoring import floor_from_rectangles, type_floor
+
+    plan = floor_from_rectangles([(0, 4, 14, 5.6), (0, 0, 5, 4), (5, 0, 8.2, 4),
+                                  (8.2, 0, 10.4, 4), (10.4, 0, 14, 4), (0, 5.6, 4, 10),
+                                  (4, 5.6, 8, 10), (8, 5.6, 11, 10), (11, 5.6, 14, 10)],
+                                 circulation=[0])
+    for seed in range(10):
+        typed = type_floor(plan, "house_types.csv", seed=seed)
+        hall = typed.room(0)
+        assert hall.circulation and hall.area > max(r.area for r in typed.rooms[1:])
+        inner = [d for d in typed.doors if not d.is_front and hall.id in d.rooms]
+        assert len(inner) >= 4
+        for door in inner:
+            (room,) = set(door.rooms) - {hall.id}
+            assert door.swing_room == room
+            assert typed.room(room).interior.buffer(1e-6).covers(door_swing(door, typed))
