@@ -57,6 +57,10 @@ __all__ = ["DOOR_POSITIONS", "DoorPosition", "MAX_REDRAWS", "CIRCULATION_TYPE", 
 MAX_REDRAWS = 12
 """How many times a floor without a typing is re-drawn before the typing gives up."""
 
+MAX_SIZE_RELAXED = (1.25, 1.5)
+"""Factors the table's ``maxSize`` areas are raised by, in turn, when neither the floor
+nor any re-draw has rooms small enough for them (:func:`_with_sizes_relaxed`)."""
+
 DOOR_RETRIES = 4
 """How many typings of one layout are tried while their doors cannot reach every room
 (before the layout is re-drawn, or the typing gives up)."""
@@ -126,6 +130,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     last_resort: FloorPlan | None = None  # typed, a room no rule takes behind a private one
     redraws = 0
     fallback: FloorPlan | None = None  # typed, but with rooms no rule takes
+    drawn = [plan]  # the floor and its re-draws
     for attempt in range(MAX_REDRAWS + 1):
         try:
             typed = _typed_with_doors(plan, table, rng, units=units, strict=strict,
@@ -153,12 +158,18 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         if not areas or min(areas) <= 0:
             break  # fixed rooms fill the floor: no room the partition could draw again
         plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
+        drawn.append(plan)
         redraws += 1
     if fallback is not None:
         return fallback
     if last_resort is not None:
         return last_resort
     assert first_error is not None
+    if not strict:
+        relaxed = _with_sizes_relaxed(drawn, table, rng, units=units,
+                                      door_position=door_position, door_state=door_state)
+        if relaxed is not None:
+            return relaxed
     reasons = list(first_error.reasons)
     if redraws:
         reasons.append(f"the floor was re-drawn {redraws} time{'s' if redraws > 1 else ''} "
@@ -169,9 +180,62 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     reasons += unit_reasons(table, units, _free_area(plan))
     if redraws:
         reasons += _too_big_reasons(plan, table, units)
+    if not strict and any(rule.max_size is not None for rule in table.rules):
+        reasons.append(f"nor with every maxSize raised by {max(MAX_SIZE_RELAXED):g}x")
     if reasons == first_error.reasons:
         raise first_error
     raise NoSolutionError(str(first_error).splitlines()[0], reasons) from None
+
+
+def _with_sizes_relaxed(drawn: Sequence[FloorPlan], table: RuleTable,
+                        rng: np.random.Generator, *, units: float,
+                        door_position: DoorPosition, door_state: str) -> FloorPlan | None:
+    """The first of the layouts ``drawn`` (the floor, then its re-draws) that types
+    under the table's ``maxSize`` areas raised by a factor of :data:`MAX_SIZE_RELAXED`,
+    the least factor first (None: none types even under the last). Without it a build
+    fails on one seed of a grammar that builds on the next: a 12 × 9 m house whose
+    straight stair takes most of the hall's side leaves a 48 m² room the partition
+    cannot cut, and the smallest room left for its bathroom has 10 m², not 9.
+
+    The rooms keep the table's own area ranges, so the floor's quality report lists each
+    room over its ``maxSize`` (``area_out_of_range``), and each gets a warning. Only
+    reached where the build would otherwise fail, and never with ``strict``: what
+    builds under the table as written is unchanged."""
+    if not any(rule.max_size is not None for rule in table.rules):
+        return None
+    scale = table.area_scale(units)
+    for factor in MAX_SIZE_RELAXED:
+        loose = replace(table, rules=tuple(
+            rule if rule.max_size is None else replace(rule, max_size=rule.max_size * factor)
+            for rule in table.rules))
+        for plan in drawn:
+            try:
+                typed = _typed_with_doors(plan, loose, rng, units=units, strict=False,
+                                          door_position=door_position, door_state=door_state)
+            except NoSolutionError:
+                continue
+            rooms = tuple(room if room.type is None else _typed_room(room, room.type, table, scale)
+                          for room in typed.rooms)
+            notes = [Diagnostic("warning", _STAGE, (
+                f"{_describe(room)} has {room.area:.1f} m², over its maxSize of {top:.1f} m²: "
+                f"no layout drawn (this floor and {len(drawn) - 1} re-draws) could be typed "
+                f"with the sizes as written, so they were raised by {factor:g}x; "
+                f"{_SMALLER_ROOMS}"), floor=typed.index, room=room.id)
+                for room in rooms if (top := _max_area(room)) is not None and room.area > top]
+            typed = typed.with_changes(rooms=rooms,
+                                       diagnostics=typed.diagnostics + tuple(notes))
+            return _redrawn(typed, 0, None, table, units)
+    return None
+
+
+def _max_area(room: Room) -> float | None:
+    """The most area (m²) its rule allows the room, a micrometre² over (None: no cap)."""
+    top = room.area_range[1] if room.area_range is not None else None
+    return None if top is None else top + 1e-6
+
+
+_SMALLER_ROOMS = ("make_floor makes smaller rooms with a lower min_room_width, a "
+                  "corridor_position that leaves one side shallow, or a higher split count")
 
 
 def _too_big_reasons(plan: FloorPlan, table: RuleTable, units: float) -> list[str]:
@@ -190,9 +254,7 @@ def _too_big_reasons(plan: FloorPlan, table: RuleTable, units: float) -> list[st
         return []
     names = ", ".join(f"{kind} (at most {top:.1f} m²)" for kind, top in capped)
     return [f"every room the floor was cut into is bigger than {names} may be (the smallest "
-            f"has {smallest:.1f} m²): make_floor makes smaller rooms with a lower "
-            "min_room_width, a corridor_position that leaves one side shallow, or a higher "
-            "split count"]
+            f"has {smallest:.1f} m²): {_SMALLER_ROOMS}"]
 
 
 def unit_reasons(table: RuleTable, units: float, free_area: float) -> list[str]:

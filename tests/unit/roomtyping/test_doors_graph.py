@@ -234,3 +234,44 @@ def test_doors_swing_out_of_the_hall_into_the_rooms_it_serves():
             (room,) = set(door.rooms) - {hall.id}
             assert door.swing_room == room
             assert typed.room(room).interior.buffer(1e-6).covers(door_swing(door, typed))
+
+
+MAX_SIZE_TABLE = [
+    "Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom;maxSize;enteredFrom;"
+    "passThrough;needsWindow;circulation",
+    "Hall;3;1;Bathroom, Room;true;1;0;;;true;false;true",
+    "Bathroom;2;0;Hall;false;1;0;9;Hall;false;false;false",
+    "Room;5;0.5;Hall;false;1;1;;Hall;true;false;false",
+]
+# a hall with a 10 m² room, the smallest, for a bathroom of at most 9 m²
+HALL_AND_BIG_ROOMS = [(0, 4, 10, 5.5), (0, 0, 2.5, 4), (2.5, 0, 10, 4), (0, 5.5, 10, 9.5)]
+
+
+def test_sizes_are_raised_with_a_warning_rather_than_fail_the_floor(tmp_path):
+    from cga.authoring import floor_from_rectangles, type_floor
+    from cga.quality import floor_quality
+
+    path = tmp_path / "types.csv"
+    path.write_text("\n".join(MAX_SIZE_TABLE) + "\n")
+    plan = floor_from_rectangles(HALL_AND_BIG_ROOMS, circulation=[0])
+    typed = type_floor(plan, path, seed=0)
+    (bathroom,) = [r for r in typed.rooms if r.type == "Bathroom"]
+    assert bathroom.area == pytest.approx(10.0) and bathroom.area_range == (2.0, 9.0)
+    (warning,) = [d for d in typed.diagnostics if "over its maxSize" in d.message]
+    assert warning.level == "warning" and warning.room == bathroom.id
+    assert "raised by 1.25x" in warning.message
+    assert floor_quality(typed)["area_out_of_range"] == [
+        {"room": bathroom.id, "type": "Bathroom", "area": 10.0, "range": [2.0, 9.0]}]
+    with pytest.raises(NoSolutionError):
+        type_floor(plan, path, seed=0, strict=True)
+
+
+def test_sizes_are_raised_no_further_than_half_again(tmp_path):
+    from cga.authoring import floor_from_rectangles, type_floor
+
+    path = tmp_path / "types.csv"
+    path.write_text("\n".join(MAX_SIZE_TABLE).replace(";0;9;Hall;", ";0;6;Hall;") + "\n")
+    plan = floor_from_rectangles(HALL_AND_BIG_ROOMS, circulation=[0])
+    with pytest.raises(NoSolutionError) as failed:
+        type_floor(plan, path, seed=0)
+    assert "nor with every maxSize raised by 1.5x" in str(failed.value)
