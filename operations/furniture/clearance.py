@@ -7,7 +7,8 @@ Three kinds of plan regions decide where furniture may stand (docs/furniture.md,
   checked clearances by stepping four clones of the item outwards; here they are exact
   rectangles, so a check is one intersection test;
 * a door's **keep-out zone**: on the side the leaf swings into, the quarter circle swept
-  by the leaf (radius = door width, centred on the hinge at the wall face); on the other
+  by the leaf (radius = door width, centred on the hinge at the wall face), covered by
+  a few boxes; on the other
   side a door-wide square in front of the opening, so nobody has to climb over furniture
   to reach the handle;
 * a window's **strip**: the band in front of the window's span. An item that could cover
@@ -49,8 +50,8 @@ __all__ = [
 Box = tuple[float, float, float, float]
 """An axis-aligned rectangle ``(minx, minz, maxx, maxz)`` in plan coordinates."""
 
-_ARC_SEGMENTS = 16
-"""Polygon segments per quarter circle of a door's swing."""
+_SWING_STEPS = 4
+"""Boxes that cover the quarter circle of a door's swing (:func:`_swing_steps`)."""
 
 
 @dataclass(frozen=True)
@@ -160,16 +161,32 @@ def door_keepouts(plan: FloorPlan, room_id: int) -> list[Keepout]:
         if door.leaf and door.swing_room == room_id:
             towards_latch = along if door.hinge == "start" else -along
             hinge = face - towards_latch * door.width / 2
-            quadrant = _rect(hinge, towards_latch * door.width, normal * door.width)
-            # the polygon circumscribes the leaf's circle, so the zone contains the whole arc
-            radius = door.width / math.cos(math.pi / (4 * _ARC_SEGMENTS))
-            swing = Point(*hinge).buffer(radius, quad_segs=_ARC_SEGMENTS).intersection(quadrant)
-            zones.append(Keepout(f"the swing of {label}", swing))
+            zones += [Keepout(f"the swing of {label}", step)
+                      for step in _swing_steps(hinge, towards_latch, normal, door.width)]
         else:
             start = face - along * door.width / 2
             zones.append(Keepout(f"the way through {label}",
                                  _rect(start, along * door.width, normal * door.width)))
     return zones
+
+
+def _swing_steps(hinge: np.ndarray, latch: np.ndarray, normal: np.ndarray,
+                 width: float) -> list[Polygon]:
+    """The quarter circle a leaf ``width`` wide sweeps from ``hinge`` (the closed leaf
+    along ``latch``, opening towards ``normal``) covered by :data:`_SWING_STEPS` boxes
+    in the door's frame, one per band of the leaf's opening: each reaches as far along
+    the wall as the arc does at its band's near edge, so together they hold the whole
+    arc and 12 % more floor than it (4 steps: 0.87 w² against π/4 w²).
+
+    Boxes, not the arc's polygon: beside a wall running along an axis they are
+    axis-aligned, and the obstacle index tests those by their bounds alone; an arc in
+    every room its door swings into cost the furniture solver over 10 % more time."""
+    steps = []
+    for k in range(_SWING_STEPS):
+        near, far = width * k / _SWING_STEPS, width * (k + 1) / _SWING_STEPS
+        reach = math.sqrt(width * width - near * near)
+        steps.append(_rect(hinge + normal * near, latch * reach, normal * (far - near)))
+    return steps
 
 
 @dataclass(frozen=True)
