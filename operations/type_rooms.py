@@ -121,7 +121,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         ``strict``, the rules leave a room unreachable.
     """
     from .roomtyping.room_graph import NoDoorsError
-    from .roomtyping.targets import target_areas
+    from .roomtyping.targets import redraw_count, target_areas
 
     if door_position not in DOOR_POSITIONS:
         raise ValueError(f"door_position must be one of {DOOR_POSITIONS}, got {door_position!r}")
@@ -153,23 +153,25 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         recipe = plan.layout
         if recipe is None or attempt == MAX_REDRAWS:
             break
-        areas = target_areas(table, recipe.free_rooms, _free_area(plan), table.area_scale(units)) \
-            if recipe.free_rooms > 0 else []
+        scale = table.area_scale(units)
+        rooms = redraw_count(table, recipe.free_rooms, _free_area(plan), scale,
+                             attempt=attempt + 1, attempts=MAX_REDRAWS)
+        areas = target_areas(table, rooms, _free_area(plan), scale) if rooms > 0 else []
         if not areas or min(areas) <= 0:
             break  # fixed rooms fill the floor: no room the partition could draw again
         plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
         drawn.append(plan)
         redraws += 1
-    if fallback is not None:
-        return fallback
-    if last_resort is not None:
-        return last_resort
-    assert first_error is not None
     if not strict:
         relaxed = _with_sizes_relaxed(drawn, table, rng, units=units,
                                       door_position=door_position, door_state=door_state)
         if relaxed is not None:
             return relaxed
+    if fallback is not None:
+        return fallback
+    if last_resort is not None:
+        return last_resort
+    assert first_error is not None
     reasons = list(first_error.reasons)
     if redraws:
         reasons.append(f"the floor was re-drawn {redraws} time{'s' if redraws > 1 else ''} "
@@ -191,16 +193,17 @@ def _with_sizes_relaxed(drawn: Sequence[FloorPlan], table: RuleTable,
                         rng: np.random.Generator, *, units: float,
                         door_position: DoorPosition, door_state: str) -> FloorPlan | None:
     """The first of the layouts ``drawn`` (the floor, then its re-draws) that types
-    under the table's ``maxSize`` areas raised by a factor of :data:`MAX_SIZE_RELAXED`,
-    the least factor first (None: none types even under the last). Without it a build
-    fails on one seed of a grammar that builds on the next: a 12 × 9 m house whose
-    straight stair takes most of the hall's side leaves a 48 m² room the partition
-    cannot cut, and the smallest room left for its bathroom has 10 m², not 9.
+    every room under the table's ``maxSize`` areas raised by a factor of
+    :data:`MAX_SIZE_RELAXED`, the least factor first (None: none does even under the
+    last). Without it a build fails on one seed of a grammar that builds on the next (a
+    12 × 9 m house whose straight stair takes most of the hall's side leaves a 48 m²
+    room the partition cannot cut, and the smallest room left for its bathroom has
+    10 m², not 9), or keeps a room no rule takes, or one entered only through a bedroom.
 
     The rooms keep the table's own area ranges, so the floor's quality report lists each
     room over its ``maxSize`` (``area_out_of_range``), and each gets a warning. Only
-    reached where the build would otherwise fail, and never with ``strict``: what
-    builds under the table as written is unchanged."""
+    reached where no layout types as the table is written, and never with ``strict``:
+    what types under the table as written is unchanged."""
     if not any(rule.max_size is not None for rule in table.rules):
         return None
     scale = table.area_scale(units)
@@ -213,6 +216,8 @@ def _with_sizes_relaxed(drawn: Sequence[FloorPlan], table: RuleTable,
                 typed = _typed_with_doors(plan, loose, rng, units=units, strict=False,
                                           door_position=door_position, door_state=door_state)
             except NoSolutionError:
+                continue
+            if table.has_access and any(r.type == DEFAULT_TYPE for r in typed.rooms):
                 continue
             rooms = tuple(room if room.type is None else _typed_room(room, room.type, table, scale)
                           for room in typed.rooms)

@@ -13,13 +13,17 @@ from __future__ import annotations
 
 from .rules import RuleTable, TypeRule
 
-__all__ = ["target_areas"]
+__all__ = ["redraw_count", "target_areas"]
 
 _FLOOR = 1.0
 """Area (m²) given to a room no rule sizes, before the spare area is shared."""
 
 _MARGIN = 0.92
 """Rooms are first grown to this fraction of their rule's ``maxSize``."""
+
+_MANY_TIMES = 2.0
+"""How many times the grammar's room count a floor must hold rooms of the table's
+typical size for :func:`redraw_count` to draw more."""
 
 
 def target_areas(table: RuleTable, count: int, free_area: float, area_scale: float) -> list[float]:
@@ -52,6 +56,44 @@ def target_areas(table: RuleTable, count: int, free_area: float, area_scale: flo
     # aim a little under the caps first: cuts land on a grid, near corners, never exact
     areas = _share_spare(wanted, [c * _MARGIN for c in caps], free_area, overflow=False)
     return _share_spare(areas, caps, free_area, overflow=True)
+
+
+def redraw_count(table: RuleTable, count: int, free_area: float, area_scale: float, *,
+                 attempt: int = 1, attempts: int = 1) -> int:
+    """How many rooms re-draw ``attempt`` (1 to ``attempts``) aims at: the grammar's
+    ``count``, unless the free floor holds more than :data:`_MANY_TIMES` as many rooms
+    of the table's typical size (the mean of its mandatory rules' ``Size``..``maxSize``
+    midpoints, twice ``Size`` where no ``maxSize``). Then the first re-draw aims at as
+    many as it holds, up to the rooms the table can type (the sum of its
+    ``appearance`` limits), and each later one at fewer, the last at ``count``: every
+    type used to its limit is hard to place, a room over the limits gets no type.
+
+    The house demo's six rooms on a 20 × 15 m lot are 20–50 m² each: no re-draw with six
+    can give a bathroom of at most 9 m² or a kitchen of at most 18 m², and the build
+    fails; with the ten to thirteen the floor holds it is a house. On the lot it was
+    written for the count stands.
+
+    Examples
+    --------
+    >>> from cga.operations.roomtyping.rules import parse_rule_table
+    >>> table = parse_rule_table("Type;Size;Prob;Neighbours;isOutsideConnected;appearance;"
+    ...                          "additionRoom;maxSize\\nLiving;16;1;Bath;true;1;0;24\\n"
+    ...                          "Bath;4;0;Living;0;2;0;8\\nGuest;9;0;Living;0;3;1;")
+    >>> redraw_count(table, 3, 60.0, 1.0), redraw_count(table, 3, 150.0, 1.0)
+    (3, 6)
+    """
+    rules = [r for r in table.mandatory if not r.circulation]
+    if not rules:
+        return count
+    typical = sum((r.size + (r.max_size if r.max_size is not None else 2 * r.size)) / 2
+                  for r in rules) * area_scale / len(rules)
+    holds = int(free_area / typical)
+    if holds <= _MANY_TIMES * count:
+        return count
+    most = min(holds, sum(r.appearance for r in table.rules if not r.circulation))
+    if most <= count or attempts <= 1:
+        return max(count, most)
+    return round(most - (most - count) * (attempt - 1) / (attempts - 1))
 
 
 def _cap(rule: TypeRule, area_scale: float) -> float:

@@ -241,7 +241,7 @@ MAX_SIZE_TABLE = [
     "passThrough;needsWindow;circulation",
     "Hall;3;1;Bathroom, Room;true;1;0;;;true;false;true",
     "Bathroom;2;0;Hall;false;1;0;9;Hall;false;false;false",
-    "Room;5;0.5;Hall;false;1;1;;Hall;true;false;false",
+    "Room;5;0.5;Hall;false;2;1;;Hall;true;false;false",
 ]
 # a hall with a 10 m² room, the smallest, for a bathroom of at most 9 m²
 HALL_AND_BIG_ROOMS = [(0, 4, 10, 5.5), (0, 0, 2.5, 4), (2.5, 0, 10, 4), (0, 5.5, 10, 9.5)]
