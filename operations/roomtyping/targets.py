@@ -61,17 +61,19 @@ def target_areas(table: RuleTable, count: int, free_area: float, area_scale: flo
 def redraw_count(table: RuleTable, count: int, free_area: float, area_scale: float, *,
                  attempt: int = 1, attempts: int = 1) -> int:
     """How many rooms re-draw ``attempt`` (1 to ``attempts``) aims at: the grammar's
-    ``count``, unless the free floor holds more than :data:`_MANY_TIMES` as many rooms
-    of the table's typical size (the mean of its mandatory rules' ``Size``..``maxSize``
-    midpoints, twice ``Size`` where no ``maxSize``). Then the first re-draw aims at as
-    many as it holds, up to the rooms the table can type (the sum of its
-    ``appearance`` limits), and each later one at fewer, the last at ``count``: every
-    type used to its limit is hard to place, a room over the limits gets no type.
+    ``count``, unless the free floor holds fewer rooms of the table's typical size (the
+    mean of its mandatory rules' ``Size``..``maxSize`` midpoints, twice ``Size`` where
+    no ``maxSize``), or more than :data:`_MANY_TIMES` as many. Then the first re-draw
+    aims at as many as it holds (at least one per mandatory rule, at most as many as the
+    table's ``appearance`` limits can type) and each later one nearer ``count``, the last
+    at ``count`` itself: a floor of just that many rooms is hard to type too (every
+    rule at its limit, or no room to spare).
 
     The house demo's six rooms on a 20 × 15 m lot are 20–50 m² each: no re-draw with six
     can give a bathroom of at most 9 m² or a kitchen of at most 18 m², and the build
-    fails; with the ten to thirteen the floor holds it is a house. On the lot it was
-    written for the count stands.
+    fails; with the ten to thirteen the floor holds it is a house. The apartment block's
+    eight rooms a storey on 12 × 9 m leave none of the 16 m² its living room needs; five
+    do. On the lots they were written for the demos hold their counts.
 
     Examples
     --------
@@ -79,8 +81,8 @@ def redraw_count(table: RuleTable, count: int, free_area: float, area_scale: flo
     >>> table = parse_rule_table("Type;Size;Prob;Neighbours;isOutsideConnected;appearance;"
     ...                          "additionRoom;maxSize\\nLiving;16;1;Bath;true;1;0;24\\n"
     ...                          "Bath;4;0;Living;0;2;0;8\\nGuest;9;0;Living;0;3;1;")
-    >>> redraw_count(table, 3, 60.0, 1.0), redraw_count(table, 3, 150.0, 1.0)
-    (3, 6)
+    >>> [redraw_count(table, 3, area, 1.0) for area in (20.0, 60.0, 150.0)]
+    [2, 3, 6]
     """
     rules = [r for r in table.mandatory if not r.circulation]
     if not rules:
@@ -88,12 +90,15 @@ def redraw_count(table: RuleTable, count: int, free_area: float, area_scale: flo
     typical = sum((r.size + (r.max_size if r.max_size is not None else 2 * r.size)) / 2
                   for r in rules) * area_scale / len(rules)
     holds = int(free_area / typical)
-    if holds <= _MANY_TIMES * count:
+    if holds < count:  # as many as it holds, but a room for each mandatory rule
+        aim = min(count, max(holds, len(rules)))
+    elif holds > _MANY_TIMES * count:
+        aim = min(holds, sum(r.appearance for r in table.rules if not r.circulation))
+    else:
         return count
-    most = min(holds, sum(r.appearance for r in table.rules if not r.circulation))
-    if most <= count or attempts <= 1:
-        return max(count, most)
-    return round(most - (most - count) * (attempt - 1) / (attempts - 1))
+    if attempts <= 1:
+        return aim
+    return round(aim + (count - aim) * (attempt - 1) / (attempts - 1))
 
 
 def _cap(rule: TypeRule, area_scale: float) -> float:

@@ -53,13 +53,16 @@ def house(unit=1.0):
 
 
 @pytest.mark.parametrize("count, free_area, expected", [
+    (6, 30.0, 3),     # holds 1, but the mandatory rules need 3 rooms
+    (6, 60.0, 3),     # holds 3
+    (6, 90.0, 5),     # holds 5
     (6, 100.0, 6),    # the lot the grammar was written for: 6 rooms of 16 m²
     (6, 192.0, 6),    # holds 12, twice the count: still the grammar's
     (6, 208.0, 13),   # holds 13: as many as it holds
     (6, 400.0, 16),   # holds 25, but the table types 1 + 2 + 3 + 10 rooms
     (12, 300.0, 12),  # never fewer than the grammar asked for
 ])
-def test_redraws_aim_at_more_rooms_only_on_a_floor_far_too_big_for_the_count(
+def test_redraws_aim_at_other_counts_only_on_a_floor_too_small_or_far_too_big(
         count, free_area, expected):
     assert redraw_count(house(), count, free_area, 1.0) == expected
 
@@ -76,3 +79,8 @@ def test_later_redraws_aim_at_fewer_rooms_down_to_the_grammars_count():
     assert counts == sorted(counts, reverse=True)
     assert [redraw_count(house(), 6, 100.0, 1.0, attempt=a, attempts=12)
             for a in (1, 12)] == [6, 6]
+
+
+def test_on_a_small_floor_later_redraws_aim_at_more_rooms_up_to_the_grammars_count():
+    counts = [redraw_count(house(), 8, 60.0, 1.0, attempt=a, attempts=12) for a in range(1, 13)]
+    assert counts[0] == 3 and counts[-1] == 8 and counts == sorted(counts)
