@@ -119,7 +119,6 @@ class MakeFloor(Operation):
     def apply(self, shape: Shape, args: dict[str, Any], ctx: OperationContext) -> list[Child]:
         from .floorplan.assemble import plan_from_dcel
         from .floorplan.bsp import partition
-        from .floorplan.circulation import CirculationError, circulation_faces
         from .floorplan.errors import PartitionError
         from .floorplan.layout import LayoutRecipe
         from .floorplan.openings import window_shortfall
@@ -142,11 +141,7 @@ class MakeFloor(Operation):
         index = int(shape.attrs.get("floor", 0))
         ring = list(footprint.exterior.coords)[:-1]
         spec = _corridor(args, ctx.units)
-        try:
-            fixed = circulation_faces(ring, spec)
-        except CirculationError as error:
-            raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {error}",
-                                  hint=_footprint_size(footprint)) from None
+        fixed = _corridor_faces(ring, spec, footprint, ctx, index)
         try:
             core = _core(shape, args, ctx, footprint, mass.height, settings,
                          [Polygon(f.polygon) for f in fixed])
@@ -214,6 +209,41 @@ class MakeFloor(Operation):
 
 
 _CORE_ATTEMPTS = 8
+
+
+def _corridor_faces(ring: list[tuple[float, float]], spec: CorridorSpec, footprint: Polygon,
+                    ctx: OperationContext, index: int) -> list[FixedFace]:
+    """The corridor's fixed faces (:func:`.floorplan.circulation.circulation_faces`).
+
+    A straight ``spine`` or ``hall`` runs wall to wall across the footprint's bounding
+    box, which an L, U or T footprint does not fill: there the corridor follows the
+    footprint's centre line instead, with a warning, so a grammar written for a
+    rectangle builds on an L-shaped lot (``--lot``) instead of failing.
+
+    Raises
+    ------
+    DerivationError
+        Neither corridor fits the footprint.
+    """
+    from .floorplan.circulation import CirculationError, circulation_faces
+
+    try:
+        return circulation_faces(ring, spec)
+    except CirculationError as error:
+        straight_failed = error
+    if spec.mode in ("spine", "hall") and footprint.area < footprint.envelope.area - 1e-6:
+        try:
+            fixed = circulation_faces(ring, replace(spec, mode="centre_line"))
+        except CirculationError:
+            pass
+        else:
+            ctx.report(Diagnostic("warning", "make_floor", (
+                f"a straight {spec.mode} corridor does not fit this footprint "
+                f"({straight_failed}); the corridor follows the footprint's centre line "
+                "instead (corridor = \"centre_line\")"), floor=index))
+            return fixed
+    raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {straight_failed}",
+                          hint=_footprint_size(footprint)) from None
 
 
 def _rooms_made(result: Partition, core: StairCore | None) -> int:

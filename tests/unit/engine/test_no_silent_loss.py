@@ -64,7 +64,11 @@ def test_a_warning_given_before_a_failure_is_in_the_error_output(tmp_path):
     grammar = tmp_path / "many.grammar"
     grammar.write_text('Lot: rectangle(8, 6)\nRules:\nLot --> extrude(3) Storey\n'
                        'Storey --> make_floor(50, 0.2, 1>1>1, 0.9, 2.1) Floor\n'
-                       'Floor --> type_rooms("office_types.csv") Typed\n', encoding="utf-8")
+                       'Floor --> type_rooms("huge.csv") Typed\n', encoding="utf-8")
+    # a 100 m² room on a 48 m² floor: no re-draw or count of rooms types it
+    (tmp_path / "huge.csv").write_text(
+        "Type;Size;Prob;Neighbours;isOutsideConnected;appearance;additionRoom\n"
+        "Huge;100;1;Huge;true;1;0\n", encoding="utf-8")
     status, err = cli("build", grammar, "--no-physics", "--out", tmp_path / "out")
     assert status == 2 and "Traceback" not in err
     assert "no room typing satisfies" in err
