@@ -63,11 +63,11 @@ def redraw_count(table: RuleTable, count: int, free_area: float, area_scale: flo
     """How many rooms re-draw ``attempt`` (1 to ``attempts``) aims at: the grammar's
     ``count``, unless the free floor holds fewer rooms of the table's typical size (the
     mean of its mandatory rules' ``Size``..``maxSize`` midpoints, twice ``Size`` where
-    no ``maxSize``), or more than :data:`_MANY_TIMES` as many. Then the first re-draw
-    aims at as many as it holds (at least one per mandatory rule, at most as many as the
-    table's ``appearance`` limits can type) and each later one nearer ``count``, the last
-    at ``count`` itself: a floor of just that many rooms is hard to type too (every
-    rule at its limit, or no room to spare).
+    no ``maxSize``), or more than :data:`_MANY_TIMES` as many. Then the first half of
+    the re-draws still aim at ``count`` (a floor that types with the grammar's count
+    keeps it), and each later one nearer as many as the floor holds (at least one per
+    mandatory rule, at most as many as the table's ``appearance`` limits can type), the
+    last at that number itself.
 
     The house demo's six rooms on a 20 × 15 m lot are 20–50 m² each: no re-draw with six
     can give a bathroom of at most 9 m² or a kitchen of at most 18 m², and the build
@@ -81,7 +81,8 @@ def redraw_count(table: RuleTable, count: int, free_area: float, area_scale: flo
     >>> table = parse_rule_table("Type;Size;Prob;Neighbours;isOutsideConnected;appearance;"
     ...                          "additionRoom;maxSize\\nLiving;16;1;Bath;true;1;0;24\\n"
     ...                          "Bath;4;0;Living;0;2;0;8\\nGuest;9;0;Living;0;3;1;")
-    >>> [redraw_count(table, 3, area, 1.0) for area in (20.0, 60.0, 150.0)]
+    >>> [redraw_count(table, 3, area, 1.0, attempt=12, attempts=12)
+    ...  for area in (20.0, 60.0, 150.0)]
     [2, 3, 6]
     """
     rules = [r for r in table.mandatory if not r.circulation]
@@ -98,7 +99,10 @@ def redraw_count(table: RuleTable, count: int, free_area: float, area_scale: flo
         return count
     if attempts <= 1:
         return aim
-    return round(aim + (count - aim) * (attempt - 1) / (attempts - 1))
+    first = attempts // 2  # the grammar's own count first: the floor is seldom that far off
+    if attempt <= first:
+        return count
+    return round(count + (aim - count) * (attempt - first) / (attempts - first))
 
 
 def _cap(rule: TypeRule, area_scale: float) -> float:

@@ -71,8 +71,8 @@ L_LOT = "polygon((0,0),(16,0),(16,8),(8,8),(8,14),(0,14))"
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name, lot, rooms", [
-    ("house", "20x15", range(9, 20)), ("house", "30x12", range(9, 20)),
-    ("apartment_block", "20x15", range(9, 20)),
+    ("house", "20x15", range(6, 20)), ("house", "30x12", range(6, 20)),
+    ("apartment_block", "20x15", range(6, 20)),
     ("house", "10x8", range(4, 10)), ("office", "12x9", range(4, 10)),
     ("house", L_LOT, range(6, 14)), ("office", L_LOT, range(6, 14))])
 def test_demos_build_on_lots_far_from_what_they_were_written_for(name, lot, rooms, tmp_path):

@@ -64,23 +64,23 @@ def house(unit=1.0):
 ])
 def test_redraws_aim_at_other_counts_only_on_a_floor_too_small_or_far_too_big(
         count, free_area, expected):
-    assert redraw_count(house(), count, free_area, 1.0) == expected
+    assert redraw_count(house(), count, free_area, 1.0, attempt=12, attempts=12) == expected
 
 
 def test_redraw_count_reads_sizes_in_the_tables_unit():
     # Size 0.16 at units = 10 is 16 m²: the same floor as 16 at units = 1
-    assert redraw_count(house(0.01), 6, 210.0, 100.0) == 13
-    assert redraw_count(house(0.01), 6, 190.0, 100.0) == 6
+    assert redraw_count(house(0.01), 6, 210.0, 100.0, attempt=12, attempts=12) == 13
+    assert redraw_count(house(0.01), 6, 190.0, 100.0, attempt=12, attempts=12) == 6
 
 
-def test_later_redraws_aim_at_fewer_rooms_down_to_the_grammars_count():
+def test_the_first_half_of_the_redraws_keep_the_count_the_rest_aim_at_more_rooms():
     counts = [redraw_count(house(), 6, 400.0, 1.0, attempt=a, attempts=12) for a in range(1, 13)]
-    assert counts[0] == 16 and counts[-1] == 6
-    assert counts == sorted(counts, reverse=True)
+    assert counts[:6] == [6] * 6 and counts[-1] == 16 and counts == sorted(counts)
     assert [redraw_count(house(), 6, 100.0, 1.0, attempt=a, attempts=12)
             for a in (1, 12)] == [6, 6]
 
 
-def test_on_a_small_floor_later_redraws_aim_at_more_rooms_up_to_the_grammars_count():
+def test_on_a_small_floor_later_redraws_aim_at_fewer_rooms():
     counts = [redraw_count(house(), 8, 60.0, 1.0, attempt=a, attempts=12) for a in range(1, 13)]
-    assert counts[0] == 3 and counts[-1] == 8 and counts == sorted(counts)
+    assert counts[:6] == [8] * 6 and counts[-1] == 3
+    assert counts == sorted(counts, reverse=True)
