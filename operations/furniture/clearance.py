@@ -176,7 +176,7 @@ def _swing_steps(hinge: np.ndarray, latch: np.ndarray, normal: np.ndarray,
     along ``latch``, opening towards ``normal``) covered by :data:`_SWING_STEPS` boxes
     in the door's frame, one per band of the leaf's opening: each reaches as far along
     the wall as the arc does at its band's near edge, so together they hold the whole
-    arc and 12 % more floor than it (4 steps: 0.87 w² against π/4 w²).
+    arc and 11 % more floor than it (4 steps: 0.87 w² against π/4 w²).
 
     Boxes, not the arc's polygon: beside a wall running along an axis they are
     axis-aligned, and the obstacle index tests those by their bounds alone; an arc in
