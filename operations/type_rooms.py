@@ -128,9 +128,9 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     first_error: NoSolutionError | None = None
     door_error: NoSolutionError | None = None  # the last layout typed but left without doors
     last_resort: FloorPlan | None = None  # typed, a room no rule takes behind a private one
-    redraws = 0
     fallback: FloorPlan | None = None  # typed, but with rooms no rule takes
     drawn = [plan]  # the floor and its re-draws
+    scale = table.area_scale(units)
     for attempt in range(MAX_REDRAWS + 1):
         try:
             typed = _typed_with_doors(plan, table, rng, units=units, strict=strict,
@@ -153,15 +153,14 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         recipe = plan.layout
         if recipe is None or attempt == MAX_REDRAWS:
             break
-        scale = table.area_scale(units)
-        rooms = redraw_count(table, recipe.free_rooms, _free_area(plan), scale,
+        free_area = _free_area(plan)
+        rooms = redraw_count(table, recipe.free_rooms, free_area, scale,
                              attempt=attempt + 1, attempts=MAX_REDRAWS)
-        areas = target_areas(table, rooms, _free_area(plan), scale) if rooms > 0 else []
+        areas = target_areas(table, rooms, free_area, scale) if rooms > 0 else []
         if not areas or min(areas) <= 0:
             break  # fixed rooms fill the floor: no room the partition could draw again
         plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
         drawn.append(plan)
-        redraws += 1
     if not strict:
         relaxed = _with_sizes_relaxed(drawn, table, rng, units=units,
                                       door_position=door_position, door_state=door_state)
@@ -173,6 +172,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         return last_resort
     assert first_error is not None
     reasons = list(first_error.reasons)
+    redraws = len(drawn) - 1
     if redraws:
         reasons.append(f"the floor was re-drawn {redraws} time{'s' if redraws > 1 else ''} "
                        "(cuts aimed at the table's areas) without a layout the rules can type")
@@ -182,7 +182,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     reasons += unit_reasons(table, units, _free_area(plan))
     if redraws:
         reasons += _too_big_reasons(plan, table, units)
-    if not strict and any(rule.max_size is not None for rule in table.rules):
+    if not strict and table.has_max_size:
         reasons.append(f"nor with every maxSize raised by {max(MAX_SIZE_RELAXED):g}x")
     if reasons == first_error.reasons:
         raise first_error
@@ -204,7 +204,7 @@ def _with_sizes_relaxed(drawn: Sequence[FloorPlan], table: RuleTable,
     room over its ``maxSize`` (``area_out_of_range``), and each gets a warning. Only
     reached where no layout types as the table is written, and never with ``strict``:
     what types under the table as written is unchanged."""
-    if not any(rule.max_size is not None for rule in table.rules):
+    if not table.has_max_size:
         return None
     scale = table.area_scale(units)
     for factor in MAX_SIZE_RELAXED:

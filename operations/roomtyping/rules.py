@@ -137,6 +137,11 @@ class RuleTable:
         return tuple(r for r in self.rules if not r.optional)
 
     @property
+    def has_max_size(self) -> bool:
+        """Whether any rule caps its rooms' area (``maxSize``)."""
+        return any(r.max_size is not None for r in self.rules)
+
+    @property
     def optional(self) -> tuple[TypeRule, ...]:
         return tuple(r for r in self.rules if r.optional)
 

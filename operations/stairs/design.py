@@ -319,7 +319,8 @@ class _Candidates:
 
 
 def _ranks(found: _Candidates, keep: np.ndarray, footprint: Polygon,
-           corridors: Sequence[Polygon], free: Polygon | MultiPolygon, *, depth: float, wall: float, door_width: float,
+           corridors: Sequence[Polygon], free: Polygon | MultiPolygon, *, depth: float,
+           wall: float, door_width: float,
            interior_width: float) -> dict[int, tuple[bool, bool, bool, bool, float]]:
     """The ranking keys of the candidates ``keep``, by candidate: the landing does not
     open onto a corridor over a door width, the core starves its part of corridor
