@@ -356,7 +356,8 @@ def _typed_through_private(plan: FloorPlan, table: RuleTable, rng: np.random.Gen
         + ": no layout or typing tried gives it a way in that avoids private rooms "
         "(make_floor's corridor= would)"), floor=typed.index, room=room)
         for room in report["reached_only_through_private"]
-        if typed.room(room).type == DEFAULT_TYPE]  # others only as enteredFrom allows
+        # access tables reach other types that way only as their enteredFrom allows
+        if typed.room(room).type == DEFAULT_TYPE or not table.has_access]
     typed = typed.with_changes(diagnostics=typed.diagnostics + tuple(notes))
     return _redrawn(typed, *redrawn, table, units)
 
@@ -409,6 +410,7 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
 
     front_room, entry, entry_notes = _entry(typed, table, typing, ids, sites, wants_front_door)
     notes += entry_notes
+    privacy: list[Pair] = []  # doors that keep a bedroom or bathroom from being a passage
     if table.has_access:  # one door into every room, the stair core's included
         pairs, extra = access_pairs(typed.rooms, sites, table, entry=entry,
                                     through_private=through_private), []
@@ -419,8 +421,11 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         if stair_pair is not None:
             pairs.append(stair_pair)
         extra = reachability_pairs(typed.rooms, pairs, sites, entry=entry)
-    if extra and strict:
-        raise _unreachable_error(typed, pairs, sites, table, entry)
+        if extra and strict:
+            raise _unreachable_error(typed, pairs, sites, table, entry)
+        if not through_private:
+            privacy = _privacy_pairs(typed, pairs + extra, sites, entry, strict=strict)
+            extra += privacy
 
     walls = {wall.id: wall for wall in typed.walls}
     windows: tuple[Window, ...] = typed.windows
@@ -437,7 +442,9 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             kind: Literal["rule", "reachability", "stair"] = (
                 "stair" if pair == stair_pair else reason)
             doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, kind))
-            if reason == "reachability":
+            if pair in privacy:
+                notes.append(_privacy_note(typed, pair))
+            elif reason == "reachability":
                 notes.append(_reachability_note(typed, pair, table))
     doors, turned_back = clear_leaves(typed, with_door_states(doors, door_state, rng))
     notes += [Diagnostic("info", _STAGE, text, floor=plan.index) for text in turned_back]
@@ -593,6 +600,29 @@ def _reachability_note(plan: FloorPlan, pair: tuple[int, int], table: RuleTable)
         f"added a door between {_describe(a)} and {_describe(b)} so every room can be "
         f"reached: no rule joins them ({a.type} lists {_lists(table, a.type)}; {b.type} "
         f"lists {_lists(table, b.type)})"), floor=plan.index, room=a.id)
+
+
+def _privacy_note(plan: FloorPlan, pair: tuple[int, int]) -> Diagnostic:
+    a, b = (plan.room(r) for r in pair)
+    return Diagnostic("info", _STAGE, (
+        f"added a door between {_describe(a)} and {_describe(b)}: the rules' doors reached "
+        "one of them only through a bedroom or bathroom"), floor=plan.index, room=a.id)
+
+
+def _privacy_pairs(plan: FloorPlan, pairs: list[tuple[int, int]], sites: DoorSites,
+                   entry: int, *, strict: bool) -> list[tuple[int, int]]:
+    """:func:`~.roomtyping.room_graph.privacy_pairs` for a floor whose doors follow the
+    thesis' rules; with ``strict``, a floor that needs one fails (and is re-drawn)."""
+    from .roomtyping.room_graph import NoDoorsError, privacy_pairs
+
+    added = privacy_pairs(plan.rooms, pairs, sites, entry=entry)
+    if added and strict:
+        raise NoDoorsError(
+            f"strict: the doors the rules allow reach some room of floor {plan.index} only "
+            "through a bedroom or bathroom",
+            [f"{_describe(plan.room(a))} and {_describe(plan.room(b))} would need a door no "
+             "rule asks for" for a, b in added])
+    return added
 
 
 def _unreachable_error(plan: FloorPlan, pairs: list[tuple[int, int]], sites: DoorSites,

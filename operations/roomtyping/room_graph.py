@@ -14,7 +14,15 @@ make the floor one connected component (so every room is reachable from the entr
 of a floor is connected, sufficient. They are chosen as a minimum spanning tree of the
 components (Kruskal with :class:`networkx.utils.UnionFind`), preferring doors into hubs:
 the room with more rule doors, then the bigger room, then the longer wall.
+
+A connected floor may still be one whose only way into a room passes a bedroom or a
+bathroom (DESIGN §11: private rooms are never the only way into another room). Tables
+written for the thesis say nothing about access, and their ``Neighbours`` happily join a
+laundry to the bathroom alone. :func:`privacy_pairs` therefore adds, after the rule and
+reachability doors, the fewest doors it can that give every room a way in from the entry
+that passes no private room (the private room itself may be the end of that way).
 """
+
 
 from __future__ import annotations
 
@@ -34,7 +42,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import networkx as nx
 
 __all__ = ["DoorSites", "NoDoorsError", "door_sites", "rule_pairs", "reachability_pairs",
-           "access_pairs", "room_graph"]
+           "privacy_pairs", "access_pairs", "room_graph"]
 
 Pair = tuple[int, int]
 
@@ -163,6 +171,70 @@ def reachability_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: Door
             "reached from the entry: no wall shared with the rest of the floor is long enough "
             "for a door", [_too_short(room, rooms, sites) for room in cut_off])
     return added
+
+
+def privacy_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: DoorSites, *,
+                  entry: int) -> list[Pair]:
+    """Extra doors that give every room a way in from ``entry`` passing no private room
+    (see module notes): a door from a room so reached, and not itself private, into a
+    room that is not, until every room is; the door into the biggest room first, from
+    the room with the most doors, then along the longer wall.
+
+    Raises
+    ------
+    NoDoorsError
+        Some room has no door-capable wall with a room reached that way (a laundry
+        whose only neighbour is the bathroom); a re-drawn layout may still give it one.
+    """
+    by_id = {room.id: room for room in rooms}
+    doors: dict[int, set[int]] = {room.id: set() for room in rooms}
+    for a, b in pairs:
+        doors[a].add(b)
+        doors[b].add(a)
+
+    def opens_on(room: int) -> bool:  # a way in may go on through this room
+        return room == entry or not by_id[room].private
+
+    reached = {entry}
+    stack = [entry]
+    added: list[Pair] = []
+    while True:
+        while stack:
+            room = stack.pop()
+            if not opens_on(room):
+                continue
+            for other in doors[room] - reached:
+                reached.add(other)
+                stack.append(other)
+        candidates = [(a, b) for a, b in sites.inner
+                      if (a in reached) != (b in reached)
+                      and opens_on(a if a in reached else b)]
+        if not candidates:
+            break
+
+        def preference(pair: Pair) -> tuple:
+            inside, outside = (pair if pair[0] in reached else pair[::-1])
+            return (-by_id[outside].area, -len(doors[inside]), -sites.longest(pair), pair)
+
+        a, b = min(candidates, key=preference)
+        added.append((a, b))
+        doors[a].add(b)
+        doors[b].add(a)
+        inside, outside = (a, b) if a in reached else (b, a)
+        reached.add(outside)
+        stack.append(outside)
+    cut_off = sorted(room.id for room in rooms if room.id not in reached)
+    if cut_off:
+        raise NoDoorsError(
+            f"room{'s' if len(cut_off) > 1 else ''} {', '.join(map(str, cut_off))} can be "
+            "reached only through a bedroom or bathroom: no wall shared with a room reached "
+            "another way is long enough for a door",
+            [f"room {room} ({by_id[room].type}) adjoins "
+             + (", ".join(f"room {other} ({by_id[other].type})"
+                          for other in sorted(sum(p) - room for p in sites.inner if room in p))
+                or "no room")
+             for room in cut_off])
+    return sorted(tuple(sorted(pair)) for pair in added)  # type: ignore[misc]
 
 
 def _too_short(room: int, rooms: Sequence[Room], sites: DoorSites) -> str:

@@ -14,8 +14,9 @@ each optional, so the thesis' tables work unchanged):
 * ``enteredFrom``: the types a room of this type may be entered from (comma list).
   When a table has this column, doors are cut only towards those types: adjacency
   alone makes no door, and ``Neighbours`` only says where the room is placed;
-* ``passThrough``: whether other rooms may be reached through this one (default true;
-  false for private rooms: bedrooms, bathrooms); a private room is the way into another
+* ``passThrough``: whether other rooms may be reached through this one; false for
+  private rooms, which is the default for types named like bedrooms and bathrooms
+  (:func:`private_by_name`), true for the rest; a private room is the way into another
   room only when that room lists its type in ``enteredFrom`` (an en-suite bathroom);
 * ``needsWindow``: the room must have an outer wall (default false);
 * ``circulation``: the type is a hall, corridor or landing (default false): it takes the
@@ -54,6 +55,7 @@ __all__ = [
     "RuleTable",
     "load_rule_table",
     "parse_rule_table",
+    "private_by_name",
 ]
 
 COLUMNS: tuple[str, ...] = (
@@ -72,6 +74,10 @@ DEFAULT_TYPE = "Commonroom"
 MAX_TYPE_RULES = 200
 """Most rules (room types) a typing table may have; the backtracker's work grows with
 them (docs/limits.md)."""
+
+PRIVATE_NAME_PARTS: tuple[str, ...] = ("bed", "bath", "toilet", "shower", "wc")
+"""Parts of a type name (any case) that make its rooms private unless the table's
+``passThrough`` says otherwise."""
 
 _TRUE = frozenset({"1", "true"})
 _FALSE = frozenset({"0", "false"})
@@ -339,9 +345,18 @@ def _parse_row(line: str, order: list[str], *, file: str, row: int) -> TypeRule:
     return TypeRule(type=type_name, size=size, prob=prob, neighbours=neighbours,
                     outside=outside, appearance=appearance, optional=optional, row=row,
                     max_size=max_size, entered_from=entered_from,
-                    pass_through=flag("passThrough", True),
+                    pass_through=flag("passThrough", not private_by_name(type_name)),
                     needs_window=flag("needsWindow", False),
                     circulation=flag("circulation", False))
+
+
+def private_by_name(type_name: str) -> bool:
+    """Whether rooms of this type are private when the table does not say: the name
+    holds one of :data:`PRIVATE_NAME_PARTS` (Bedroom, MasterBedroom, Bathroom, WC). The
+    thesis' tables have no ``passThrough`` column, yet their bedrooms and bathrooms must
+    not become the only way into another room (DESIGN §11)."""
+    name = type_name.lower()
+    return any(part in name for part in PRIVATE_NAME_PARTS)
 
 
 def _number(text: str, error: RuleTableError) -> float:

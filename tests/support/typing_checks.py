@@ -21,6 +21,7 @@ OUTSIDE = -1
 DEFAULT_TYPE = "Commonroom"
 TOL = 1e-6
 MARGIN = 0.1
+PRIVATE_PARTS = ("bed", "bath", "toilet", "shower", "wc")
 
 
 def table_in_metres(path: str | Path) -> bool:
@@ -47,7 +48,11 @@ def read_rules(path: str | Path) -> list[dict]:
             "appearance": int(float(cell["appearance"])),
             "optional": cell["additionroom"].lower() in ("1", "true"),
             # access columns (docs/room_typing.md): private rooms are nobody's way in
-            "private": cell.get("passthrough", "").lower() in ("0", "false"),
+            # without a passThrough value, types named like bedrooms and bathrooms
+            "private": (cell.get("passthrough", "").lower() in ("0", "false")
+                        or (not cell.get("passthrough")
+                            and any(part in cell["type"].lower() for part in PRIVATE_PARTS))),
+            "access_table": "enteredfrom" in header,
             "entered_from": {n.strip().lower() for n in cell.get("enteredfrom", "").split(",")
                              if n.strip()},
         })
@@ -145,7 +150,8 @@ def validate_typed_plan(plan, rules_path: str | Path, *, units: float = 1.0,
     reached = nx.node_connected_component(graph, start)
     assert set(rooms) <= reached, f"unreachable rooms: {sorted(set(rooms) - reached)}"
 
-    # a private room (passThrough false) is the only way into no other room, but the
+    # a private room (passThrough false; by default one named like a bedroom or
+    # bathroom) is the only way into no other room, but the
     # rooms that name its type in enteredFrom (an en-suite bathroom behind a bedroom)
     by_type = {r["type"]: r for r in rules}
     for room in rooms.values():
@@ -156,7 +162,9 @@ def validate_typed_plan(plan, rules_path: str | Path, *, units: float = 1.0,
         for other in sorted(behind):
             allowed = by_type.get(rooms[other].type, {}).get("entered_from", set())
             # the typing's documented last resort for a room no rule takes: warned
-            warned = rooms[other].type == DEFAULT_TYPE and any(
+            # (any room, for a table without access columns)
+            last_resort = rooms[other].type == DEFAULT_TYPE or not rules[0]["access_table"]
+            warned = last_resort and any(
                 d.level == "warning" and d.room == other and "reached only through" in d.message
                 for d in plan.diagnostics)
             assert room.type.lower() in allowed or warned, (

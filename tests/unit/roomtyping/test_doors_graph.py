@@ -275,3 +275,57 @@ def test_sizes_are_raised_no_further_than_half_again(tmp_path):
     with pytest.raises(NoSolutionError) as failed:
         type_floor(plan, path, seed=0)
     assert "nor with every maxSize raised by 1.5x" in str(failed.value)
+
+
+# A row of rooms: living room (front door), bathroom, laundry: the thesis' table joins
+# the laundry to the bathroom alone; the hall-like strip below touches all three.
+ROW_AND_STRIP = [(0, 3, 6, 8), (6, 3, 10, 8), (10, 3, 14, 8), (0, 0, 14, 3)]
+LAUNDRY_BEHIND_BATHROOM = ["Livingroom;1;1;Bathroom, Livingroom, Kitchen;1;1;0",
+                           "Bathroom;1;0;Livingroom;0;1;0",
+                           "Laundryroom;1;0;Bathroom;0;1;0",
+                           "Kitchen;1;0;Livingroom;0;1;0"]
+
+
+def test_no_bedroom_or_bathroom_is_the_only_way_into_a_room(tmp_path):
+    path = write(tmp_path, LAUNDRY_BEHIND_BATHROOM)
+    plan = plan_from_rectangles(ROW_AND_STRIP)
+    for seed in range(12):
+        typed = type_plan(plan, rules(*LAUNDRY_BEHIND_BATHROOM), np.random.default_rng(seed))
+        validate_typed_plan(typed, path)  # checks the property independently
+        laundry = next(r.id for r in typed.rooms if r.type == "Laundryroom")
+        bathroom = next(r.id for r in typed.rooms if r.type == "Bathroom")
+        ways_in = {sum(d.rooms) - laundry for d in typed.doors if laundry in d.rooms}
+        assert bathroom in ways_in  # the rule's door stays
+        assert ways_in - {bathroom}, "the laundry is entered only through the bathroom"
+        assert any("only through a bedroom or bathroom" in d.message
+                   for d in typed.diagnostics if d.room in ways_in | {laundry})
+
+
+def test_types_named_like_bedrooms_and_bathrooms_are_private_unless_the_table_says():
+    table = parse_rule_table("\n".join([
+        HEADER + ";passThrough",
+        "Livingroom;1;1;Bedroom;1;1;0;", "Bedroom;1;0;Livingroom;0;1;0;",
+        "MasterBedroom;1;0;Livingroom;0;1;1;", "GuestWC;1;0;Livingroom;0;1;1;",
+        "Bathroom;1;0;Livingroom;0;1;1;true"]), file="t.csv")
+    private = {rule.type for rule in table.rules if not rule.pass_through}
+    assert private == {"Bedroom", "MasterBedroom", "GuestWC"}
+
+
+def test_a_room_only_a_bathroom_adjoins_is_kept_with_a_warning(tmp_path):
+    # three rooms in a row: where the laundry ends up at the end beside the bathroom,
+    # no layout of this floor gives it another way in
+    rows = ["Livingroom;1;1;Bathroom, Livingroom;1;1;0", "Bathroom;1;0;Livingroom;0;1;0",
+            "Laundryroom;1;0;Bathroom;0;1;0"]
+    plan = plan_from_rectangles([(0, 0, 8, 5), (8, 0, 11, 5), (11, 0, 14, 5)])
+    warned = 0
+    for seed in range(10):
+        typed = type_plan(plan, rules(*rows), np.random.default_rng(seed))
+        validate_typed_plan(typed, write(tmp_path, rows))  # exempts only the warned case
+        laundry = next(r for r in typed.rooms if r.type == "Laundryroom")
+        ways_in = {typed.room(sum(d.rooms) - laundry.id).type
+                   for d in typed.doors if laundry.id in d.rooms}
+        warning = [d for d in typed.diagnostics if d.level == "warning"
+                   and d.room == laundry.id and "reached only through" in d.message]
+        assert bool(warning) == (ways_in == {"Bathroom"}), (seed, ways_in)
+        warned += bool(warning)
+    assert warned
