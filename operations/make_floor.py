@@ -218,7 +218,10 @@ def _corridor_faces(ring: list[tuple[float, float]], spec: CorridorSpec, footpri
     A straight ``spine`` or ``hall`` runs wall to wall across the footprint's bounding
     box, which an L, U or T footprint does not fill: there the corridor follows the
     footprint's centre line instead, with a warning, so a grammar written for a
-    rectangle builds on an L-shaped lot (``--lot``) instead of failing.
+    rectangle builds on an L-shaped lot (``--lot``) instead of failing. A building too
+    shallow for rooms on both sides of it gets it along one outer wall instead
+    (single-loaded, as narrow terraced houses and gallery-access flats are laid out),
+    also with a warning.
 
     Raises
     ------
@@ -241,6 +244,16 @@ def _corridor_faces(ring: list[tuple[float, float]], spec: CorridorSpec, footpri
                 f"a straight {spec.mode} corridor does not fit this footprint "
                 f"({straight_failed}); the corridor follows the footprint's centre line "
                 "instead (corridor = \"centre_line\")"), floor=index))
+            return fixed
+    if spec.mode in ("spine", "hall"):
+        try:
+            fixed = circulation_faces(ring, replace(spec, single_loaded=True))
+        except CirculationError:
+            pass
+        else:
+            ctx.report(Diagnostic("warning", "make_floor", (
+                f"{straight_failed}, so the {spec.mode} runs along the outer wall with rooms "
+                "on one side only (single-loaded)"), floor=index))
             return fixed
     raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {straight_failed}",
                           hint=_footprint_size(footprint)) from None

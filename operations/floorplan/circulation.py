@@ -62,6 +62,9 @@ class CorridorSpec:
     (fraction of the depth, 0.5 in the middle); ``min_depth`` the least depth of the
     rooms between corridor and shell; ``n_left``/``n_right`` the rooms on each side of a
     ``spine`` (0: the BSP decides), left being the side of smaller coordinate.
+    ``single_loaded``: a ``spine`` or ``hall`` runs along the outer wall on the side
+    ``position`` leans to, with rooms on the other side only (a building too shallow
+    for rooms on both sides; ``make_floor`` falls back to it with a warning).
     """
 
     mode: Mode = "none"
@@ -70,6 +73,7 @@ class CorridorSpec:
     min_depth: float = 2.5
     n_left: int = 0
     n_right: int = 0
+    single_loaded: bool = False
 
 
 def circulation_faces(footprint: Sequence[Point], spec: CorridorSpec) -> list[FixedFace]:
@@ -100,7 +104,9 @@ def _faces(footprint: tuple[Point, ...], spec: CorridorSpec) -> tuple[FixedFace,
     faces = [FixedFace(_ring(corridor), circulation=True,
                        kind="corridor" if along_long else "hall")]
     for side, count in zip(sides, (spec.n_left, spec.n_right)):
-        faces += [FixedFace(_ring(room), kind="room") for room in _divide(side, count, along_long)]
+        if side.area > _TOL:  # a single-loaded corridor leaves one side empty
+            faces += [FixedFace(_ring(room), kind="room")
+                      for room in _divide(side, count, along_long)]
     return tuple(faces)
 
 
@@ -111,14 +117,18 @@ def _straight(outline: Polygon, spec: CorridorSpec,
     runs_x = (maxx - minx >= maxz - minz) == along_long
     lo, hi = (minz, maxz) if runs_x else (minx, maxx)
     depth = hi - lo
-    need = spec.width + 2 * spec.min_depth
+    loaded = 1 if spec.single_loaded else 2
+    need = spec.width + loaded * spec.min_depth
     if depth < need - _TOL:
         raise CirculationError(
             f"the building is {depth:.2f} m deep across the corridor; a {spec.width:.2f} m "
-            f"corridor with rooms at least {spec.min_depth:.2f} m deep on both sides needs "
-            f"{need:.2f} m")
-    start = lo + spec.position * depth - spec.width / 2
-    start = min(max(start, lo + spec.min_depth), hi - spec.min_depth - spec.width)
+            f"corridor with rooms at least {spec.min_depth:.2f} m deep on "
+            f"{'one side' if spec.single_loaded else 'both sides'} needs {need:.2f} m")
+    if spec.single_loaded:
+        start = lo if spec.position < 0.5 else hi - spec.width
+    else:
+        start = lo + spec.position * depth - spec.width / 2
+        start = min(max(start, lo + spec.min_depth), hi - spec.min_depth - spec.width)
     start = round(start, 6)
     end = round(start + spec.width, 6)
     strip = box(minx - 1, start, maxx + 1, end) if runs_x else box(start, minz - 1, end, maxz + 1)

@@ -40,6 +40,18 @@ def test_too_shallow_for_corridor_and_rooms():
         circulation_faces(rect(20, 6), CorridorSpec("spine"))
 
 
+@pytest.mark.parametrize("position, expected", [(0.3, box(0, 0, 20, 1.2)),
+                                                 (0.5, box(0, 3.8, 20, 5))])
+def test_single_loaded_corridor_runs_along_the_wall_position_leans_to(position, expected):
+    poly, faces = corridor(rect(20, 5), mode="spine", position=position, single_loaded=True,
+                           n_left=2, n_right=2)
+    assert poly.equals(expected)
+    rooms = [Polygon(f.polygon) for f in faces[1:]]
+    assert len(rooms) == 2 and all(not r.intersection(poly).area for r in rooms)
+    with pytest.raises(CirculationError, match="on one side needs 3.70 m"):
+        circulation_faces(rect(20, 3.6), CorridorSpec("spine", single_loaded=True))
+
+
 def test_rooms_per_side_divide_each_side_evenly():
     _, faces = corridor(rect(20, 12), mode="spine", n_left=4, n_right=2)
     rooms = [Polygon(f.polygon) for f in faces[1:]]

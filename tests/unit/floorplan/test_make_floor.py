@@ -210,6 +210,19 @@ def test_corridor_modes_carve_one_circulation_room_and_split_plus_one_rooms(mode
             assert room.polygon.boundary.intersection(hall.boundary).length >= 0.9 + 2 * 0.3 - 1e-9
 
 
+def test_a_spine_too_shallow_for_two_sides_runs_along_one_wall_with_a_warning():
+    # 6 m deep: a 1.2 m spine and 2.5 m rooms on both sides need 6.2 m
+    ctx, reports = context()
+    [child] = MakeFloor().apply(storey(box(0, 0, 16, 6)),
+                                args(split=4, corridor="spine", corridor_position=0.7), ctx)
+    plan = child.plan
+    validate_plan(plan)
+    (hall,) = [r.polygon for r in plan.rooms if r.circulation]
+    assert hall.equals(box(0, 4.8, 16, 6))  # along the far wall: position leans that way
+    assert all(r.polygon.bounds[3] <= 4.8 + 1e-9 for r in plan.rooms if not r.circulation)
+    assert any("single-loaded" in r.message and r.level == "warning" for r in reports)
+
+
 def test_rooms_per_side_make_equal_offices():
     ctx, _ = context()
     [child] = MakeFloor().apply(storey(box(0, 0, 20, 12)),
@@ -223,7 +236,7 @@ def test_rooms_per_side_make_equal_offices():
     ({"corridor": "spine", "corridor_width": 1.0}, "at least 1.2"),
     ({"corridor": "spine", "corridor_position": 1.5}, "between 0 and 1"),
     ({"corridor": "hall", "n_left": 2}, "n_left and n_right"),
-    ({"corridor": "spine", "min_room_depth": 6}, "cannot carve a spine corridor"),
+    ({"corridor": "spine", "min_room_depth": 11}, "cannot carve a spine corridor"),
 ])
 def test_bad_corridor_options_are_derivation_errors(kw, message):
     ctx, _ = context()
