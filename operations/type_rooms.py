@@ -441,7 +441,10 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             centre = door_centre(interval, width, rng, door_position)
             kind: Literal["rule", "reachability", "stair"] = (
                 "stair" if pair == stair_pair else reason)
-            doors.append(_add_door(len(doors), walls, wall.id, centre, pair, typed, kind))
+            places = [(wall.id, centre)] + [
+                (other.id, at) for other, (lo, hi) in sites.inner[pair]
+                for at in ((lo + hi) / 2, lo + width / 2, hi - width / 2)]
+            doors.append(_add_door(len(doors), walls, places, pair, typed, kind, doors))
             if pair in privacy:
                 notes.append(_privacy_note(typed, pair))
             elif reason == "reachability":
@@ -470,17 +473,23 @@ def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Wi
             f"the front door replaces {len(removed)} window{'s' if len(removed) != 1 else ''} "
             f"on wall {wall.id}: no stretch between windows of room {room} takes a "
             f"{width:.2f} m door"), floor=plan.index, room=room))
-    doors.append(_add_door(len(doors), walls, wall.id, centre, (room, OUTSIDE), plan, "front"))
+    doors.append(_add_door(len(doors), walls, [(wall.id, centre)], (room, OUTSIDE), plan,
+                           "front", doors))
     return windows
 
 
-def _add_door(door_id: int, walls: dict[int, Wall], wall_id: int, centre: float,
+def _add_door(door_id: int, walls: dict[int, Wall], places: Sequence[tuple[int, float]],
               rooms: tuple[int, int], plan: FloorPlan,
-              reason: Literal["rule", "reachability", "front", "stair"]) -> Door:
-    from .roomtyping.doors import door_opening, make_door
+              reason: Literal["rule", "reachability", "front", "stair"],
+              hung: Sequence[Door]) -> Door:
+    """The door at the first of ``places`` (wall id, centre), hung clear of the sweeps
+    of the doors ``hung`` before it where another place or way allows
+    (:func:`~.roomtyping.doors.place_door`), cut into its wall in ``walls``."""
+    from .roomtyping.doors import door_opening, door_swing_on, place_door
 
-    door = make_door(door_id, walls[wall_id], centre, rooms, plan, reason=reason)
-    walls[wall_id] = walls[wall_id].with_opening(door_opening(door, plan))
+    door = place_door(door_id, [(walls[w], centre) for w, centre in places], rooms, plan,
+                      reason=reason, avoid=[door_swing_on(d, walls[d.wall]) for d in hung])
+    walls[door.wall] = walls[door.wall].with_opening(door_opening(door, plan))
     return door
 
 

@@ -17,6 +17,14 @@ corridor nor meet one another across it (with the bigger room taking the swing, 
 hall's doors swung into the hall, and those facing each other across 1.5 m met).
 Between two rooms, or two circulation spaces, it swings into the bigger one. Either way
 it swings into the other room when the quarter circle it sweeps only fits there.
+
+Doors are hung one after another (:func:`place_door`), and a leaf whose sweep would
+cross the sweep of a door already hung (two doors in one corner of a room, or a room
+door beside the front door) is hung otherwise: from its other jamb, then into the other
+room, then at the ends of its stretch of wall or on another wall the two rooms share,
+the first way that keeps both sweeps apart (else as :func:`make_door` would hang it).
+Two doors whose leaves cannot both open are a trap for a robot and a nuisance for
+anybody.
 """
 
 from __future__ import annotations
@@ -41,6 +49,7 @@ __all__ = [
     "front_door_site",
     "clear_windows",
     "make_door",
+    "place_door",
     "door_opening",
     "door_swing",
 ]
@@ -199,9 +208,7 @@ def door_swing(door: Door, plan: FloorPlan) -> Polygon:
 
     Useful to keep furniture out of a door's way.
     """
-    wall = plan.wall(door.wall)
-    centre = math.dist(wall.start, door.position)
-    return _swing_polygon(wall, centre, door.width, door.hinge, door.swing_room)
+    return door_swing_on(door, plan.wall(door.wall))
 
 
 def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
@@ -227,6 +234,46 @@ def make_door(door_id: int, wall: Wall, centre: float, rooms: tuple[int, int],
                 width=settings.door_width, height=settings.door_height,
                 swing_room=swing_room, hinge=hinge, is_front=reason == "front",
                 reason=reason)
+
+
+_SWEEP_OVERLAP = 1e-3
+"""Area (m²) two door sweeps may share and still count as apart (touching edges)."""
+
+
+def place_door(door_id: int, sites: Sequence[tuple[Wall, float]], rooms: tuple[int, int],
+               plan: FloorPlan, *, reason: Literal["rule", "reachability", "front", "stair"],
+               avoid: Sequence[Polygon] = ()) -> Door:
+    """The door :func:`make_door` hangs at the first of ``sites`` (wall, centre), unless
+    its sweep crosses one of ``avoid`` (the sweeps of the doors already hung): then the
+    first way, in the order of the module notes, whose sweep fits its room and crosses
+    none of them."""
+    first = make_door(door_id, sites[0][0], sites[0][1], rooms, plan, reason=reason)
+    if not avoid or _sweep_clear(door_swing_on(first, sites[0][0]), avoid):
+        return first
+    swing_rooms = ([first.swing_room] if OUTSIDE in rooms else
+                   [first.swing_room, rooms[0] if rooms[1] == first.swing_room else rooms[1]])
+    for wall, centre in sites:
+        natural = "start" if centre <= wall.length / 2 else "end"
+        for room in swing_rooms:
+            for hinge in (natural, "end" if natural == "start" else "start"):
+                if not _sweep_fits(plan.room(room), wall, centre, plan.settings.door_width, hinge):
+                    continue
+                sweep = _swing_polygon(wall, centre, plan.settings.door_width, hinge, room)
+                if _sweep_clear(sweep, avoid):
+                    return replace(first, wall=wall.id, position=wall.point_at(centre),
+                                   swing_room=room, hinge=hinge)
+    return first
+
+
+def door_swing_on(door: Door, wall: Wall) -> Polygon:
+    """:func:`door_swing` for a door in ``wall`` (a plan's walls need not hold it yet)."""
+    return _swing_polygon(wall, math.dist(wall.start, door.position), door.width,
+                          door.hinge, door.swing_room)
+
+
+def _sweep_clear(sweep: Polygon, others: Sequence[Polygon]) -> bool:
+    return not any(sweep.intersects(other) and sweep.intersection(other).area > _SWEEP_OVERLAP
+                   for other in others)
 
 
 def _sweep_fits(room: Room, wall: Wall, centre: float, width: float,

@@ -36,7 +36,7 @@ DEMOS = {
 def floors(name: str, seed: int):
     """The typed floors of a demo, derived without its furniture rule."""
     text = (ROOT / "demos" / f"{name}.grammar").read_text()
-    text = re.sub(r"^Typed --> add_furniture\(.*$", "", text, flags=re.M)
+    text = re.sub(r"^\w+ --> add_furniture\(.*$", "", text, flags=re.M)
     derivation = Evaluator(parse(text, f"{name}.grammar"), seed=seed,
                            base_dir=ROOT / "demos").derive()
     return Scene(name=name, seed=seed, units=derivation.units, terminals=derivation.terminals,
@@ -100,3 +100,16 @@ def test_demos_build_on_lots_far_from_what_they_were_written_for(name, lot, room
                 if top is not None and room.area > top + 1e-6:
                     assert any(d.room == room.id and "over its maxSize" in d.message
                                for d in plan.diagnostics)
+
+
+@pytest.mark.slow
+def test_thesis_tables_make_no_bedroom_or_bathroom_a_passage():
+    """The thesis' own table (seed_compat) joins the laundry to the bathroom alone and
+    has no access columns: its bedrooms and bathrooms are still nobody's only way in,
+    and no two doors sweep into each other."""
+    table = read_table(ROOT / "rules" / "thesis_types.csv")
+    assert table.private == {"Bedroom", "Bathroom"}
+    for seed in range(SEEDS):
+        for plan in floors("seed_compat", seed):
+            problems = floor_problems(plan, table)
+            assert not problems, f"seed_compat seed {seed} floor {plan.index}: {problems}"

@@ -4,7 +4,9 @@ It reads the tables with the csv module and the floors' rooms and doors only (ne
 the typing code or :mod:`cga.quality`), and reports what an architect would object to:
 private rooms that are the only way into another room (unless that room lists the
 private type in ``enteredFrom``: en-suite), offices and meeting rooms without a door
-onto circulation, a front door not into circulation, rooms whose type no rule defines.
+onto circulation, a front door not into circulation, rooms whose type no rule defines,
+two doors whose leaves sweep into each other. A table without a ``passThrough`` value
+for a type makes it private when its name is a bedroom's or bathroom's (docs/room_typing.md).
 The one type no table defines is ``Stair``, the stair core ``make_floor`` reserves on
 every storey of a stack (DESIGN §12): it is circulation.
 """
@@ -12,13 +14,18 @@ every storey of a stack (DESIGN §12): it is circulation.
 from __future__ import annotations
 
 import csv
+import math
 from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
 
+from shapely.geometry import Point, Polygon
+
 from cga.model import OUTSIDE
 
 STAIR = "Stair"
+PRIVATE_NAMES = ("bed", "bath", "toilet", "shower", "wc")
+SWEEP_OVERLAP = 0.01  # m² two leaves' sweeps may share (numerical noise)
 
 __all__ = ["Table", "read_table", "floor_problems"]
 
@@ -39,10 +46,38 @@ def read_table(path: Path) -> Table:
         return (row.get(key) or "").strip().lower() in ("1", "true")
     return Table(
         types=frozenset(r["Type"].strip() for r in rows),
-        private=frozenset(r["Type"].strip() for r in rows if (r.get("passThrough") or "").strip().lower() in ("0", "false")),
+        private=frozenset(r["Type"].strip() for r in rows if _private(r)),
         circulation=frozenset(r["Type"].strip() for r in rows if flag(r, "circulation")),
         entered_from={r["Type"].strip(): frozenset(t.strip() for t in (r.get("enteredFrom") or "").split(",") if t.strip())
                       for r in rows})
+
+
+def _private(row) -> bool:
+    value = (row.get("passThrough") or "").strip().lower()
+    if value:
+        return value in ("0", "false")
+    return any(part in row["Type"].lower() for part in PRIVATE_NAMES)
+
+
+def _sweep(plan, door) -> Polygon:
+    """The quarter circle the leaf sweeps, from the hinge on the wall's centre line,
+    clipped to the room it swings into (so the wall's own thickness is left out)."""
+    wall = next(w for w in plan.walls if w.id == door.wall)
+    (x0, z0), (x1, z1) = wall.start, wall.end
+    length = math.dist(wall.start, wall.end)
+    ux, uz = (x1 - x0) / length, (z1 - z0) / length
+    px, pz = door.position
+    sign = -1 if door.hinge == "start" else 1
+    hx, hz = px + sign * ux * door.width / 2, pz + sign * uz * door.width / 2
+    ax, az = -sign * ux, -sign * uz  # from the hinge to the other jamb
+    room = next(r for r in plan.rooms if r.id == door.swing_room)
+    nx, nz = -uz, ux
+    if not room.polygon.contains(Point(px + nx * 0.3, pz + nz * 0.3)):
+        nx, nz = uz, -ux
+    arc = [(hx + door.width * (math.cos(t) * ax + math.sin(t) * nx),
+            hz + door.width * (math.cos(t) * az + math.sin(t) * nz))
+           for t in (k * math.pi / 32 for k in range(17))]
+    return Polygon([(hx, hz), *arc]).intersection(room.polygon)
 
 
 def _reachable(rooms, edges, start, without=None):
@@ -88,4 +123,10 @@ def floor_problems(plan, table: Table) -> list[str]:
         if r.type in ("Office", "Meetingroom") and not any(
                 types[n] in table.circulation | {STAIR} for n in edges[r.id]):
             problems.append(f"{r.type} {r.id} does not open onto circulation")
+    sweeps = [(d.id, _sweep(plan, d)) for d in plan.doors]
+    for i, (a, sweep_a) in enumerate(sweeps):
+        for b, sweep_b in sweeps[i + 1:]:
+            overlap = sweep_a.intersection(sweep_b).area
+            if overlap > SWEEP_OVERLAP:
+                problems.append(f"doors {a} and {b} sweep into each other ({overlap:.2f} m²)")
     return problems

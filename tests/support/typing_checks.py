@@ -151,11 +151,12 @@ def validate_typed_plan(plan, rules_path: str | Path, *, units: float = 1.0,
     assert set(rooms) <= reached, f"unreachable rooms: {sorted(set(rooms) - reached)}"
 
     # a private room (passThrough false; by default one named like a bedroom or
-    # bathroom) is the only way into no other room, but the
-    # rooms that name its type in enteredFrom (an en-suite bathroom behind a bedroom)
+    # bathroom) is the only way into no other room, but the rooms that name its type in
+    # enteredFrom (an en-suite bathroom behind a bedroom); the room the floor is entered
+    # by is every other room's way in, whatever its type
     by_type = {r["type"]: r for r in rules}
     for room in rooms.values():
-        if not by_type.get(room.type, {}).get("private") or room.id == start:
+        if not by_type.get(room.type, {}).get("private") or room.id in (start, entry):
             continue
         rest = graph.subgraph(n for n in graph if n != room.id)
         behind = reached - {room.id} - nx.node_connected_component(rest, start)

@@ -1,6 +1,7 @@
 """Door sites, door placement, the front door, swings, reachability doors, the graph."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -329,3 +330,25 @@ def test_a_room_only_a_bathroom_adjoins_is_kept_with_a_warning(tmp_path):
         assert bool(warning) == (ways_in == {"Bathroom"}), (seed, ways_in)
         warned += bool(warning)
     assert warned
+
+
+def test_a_door_is_hung_clear_of_the_sweep_of_a_door_already_hung():
+    from cga.operations.roomtyping.doors import door_swing_on, make_door, place_door
+
+    plan = plan_from_rectangles([(0, 0, 6, 5), (6, 0, 10, 5)])
+    wall = wall_between(plan, 0, 1)  # x = 6, from z = 0 to 5
+    natural = make_door(0, wall, 1.0, (0, 1), plan, reason="rule")
+    in_the_way = door_swing_on(natural, wall)
+    # nothing in the way: hung as make_door hangs it
+    assert place_door(1, [(wall, 1.0)], (0, 1), plan, reason="rule") == replace(natural, id=1)
+    door = place_door(1, [(wall, 1.0), (wall, 4.0)], (0, 1), plan, reason="rule",
+                      avoid=[in_the_way])
+    assert door_swing_on(door, wall).intersection(in_the_way).area < 1e-3
+    assert (door.hinge, door.swing_room) != (natural.hinge, natural.swing_room)
+    assert math.dist(door.position, wall.point_at(1.0)) < 1e-9  # hung otherwise, not moved
+    # every way of hanging it at 1.0 m meets a sweep on both sides: it moves along the wall
+    both = [in_the_way, door_swing_on(door, wall),
+            *(door_swing_on(replace(natural, hinge=h, swing_room=r), wall)
+              for h in ("start", "end") for r in (0, 1))]
+    moved = place_door(1, [(wall, 1.0), (wall, 4.0)], (0, 1), plan, reason="rule", avoid=both)
+    assert math.dist(moved.position, wall.point_at(4.0)) < 1e-9
