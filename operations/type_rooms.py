@@ -45,6 +45,8 @@ from .roomtyping.door_states import DOOR_STATE_CHOICES, clear_leaves, with_door_
 from .roomtyping.rules import DEFAULT_TYPE, RuleTable, load_rule_table
 
 if TYPE_CHECKING:
+    from shapely.geometry import Polygon
+
     from .roomtyping.assign import Typing
     from .roomtyping.doors import Interval
     from .roomtyping.room_graph import DoorSites, Pair
@@ -430,9 +432,11 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     walls = {wall.id: wall for wall in typed.walls}
     windows: tuple[Window, ...] = typed.windows
     doors: list[Door] = []
+    sweeps: list[Polygon] = []  # the quarter circles of the doors hung so far
     if front_room is not None:
-        windows = _add_front_door(doors, walls, windows, typed, sites.outer[front_room],
-                                  front_room, rng, door_position, notes)
+        windows = _add_front_door(doors, sweeps, walls, windows, typed,
+                                  sites.outer[front_room], front_room, rng, door_position,
+                                  notes)
     batches: tuple[tuple[Literal["rule", "reachability"], list[Pair]], ...] = (
         ("rule", list(pairs)), ("reachability", list(extra)))
     for reason, chosen in batches:
@@ -444,7 +448,7 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             places = [(wall.id, centre)] + [
                 (other.id, at) for other, (lo, hi) in sites.inner[pair]
                 for at in ((lo + hi) / 2, lo + width / 2, hi - width / 2)]
-            doors.append(_add_door(len(doors), walls, places, pair, typed, kind, doors))
+            doors.append(_add_door(len(doors), walls, places, pair, typed, kind, sweeps))
             if pair in privacy:
                 notes.append(_privacy_note(typed, pair))
             elif reason == "reachability":
@@ -457,7 +461,8 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     return result.with_changes(room_graph=room_graph(result, doors), entry=entry)
 
 
-def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Window, ...],
+def _add_front_door(doors: list[Door], sweeps: list[Polygon], walls: dict[int, Wall],
+                    windows: tuple[Window, ...],
                     plan: FloorPlan, candidates: Sequence[tuple[Wall, Interval]], room: int,
                     rng: np.random.Generator, door_position: DoorPosition,
                     notes: list[Diagnostic]) -> tuple[Window, ...]:
@@ -474,22 +479,24 @@ def _add_front_door(doors: list[Door], walls: dict[int, Wall], windows: tuple[Wi
             f"on wall {wall.id}: no stretch between windows of room {room} takes a "
             f"{width:.2f} m door"), floor=plan.index, room=room))
     doors.append(_add_door(len(doors), walls, [(wall.id, centre)], (room, OUTSIDE), plan,
-                           "front", doors))
+                           "front", sweeps))
     return windows
 
 
 def _add_door(door_id: int, walls: dict[int, Wall], places: Sequence[tuple[int, float]],
               rooms: tuple[int, int], plan: FloorPlan,
               reason: Literal["rule", "reachability", "front", "stair"],
-              hung: Sequence[Door]) -> Door:
-    """The door at the first of ``places`` (wall id, centre), hung clear of the sweeps
-    of the doors ``hung`` before it where another place or way allows
-    (:func:`~.roomtyping.doors.place_door`), cut into its wall in ``walls``."""
-    from .roomtyping.doors import door_opening, door_swing_on, place_door
+              sweeps: list[Polygon]) -> Door:
+    """The door at the first of ``places`` (wall id, centre), hung clear of ``sweeps``,
+    those of the doors hung before it, where another place or way allows
+    (:func:`~.roomtyping.doors.place_door`), cut into its wall in ``walls``; its own
+    sweep is appended to ``sweeps``."""
+    from .roomtyping.doors import door_opening, place_door
 
-    door = place_door(door_id, [(walls[w], centre) for w, centre in places], rooms, plan,
-                      reason=reason, avoid=[door_swing_on(d, walls[d.wall]) for d in hung])
+    door, sweep = place_door(door_id, [(walls[w], centre) for w, centre in places], rooms,
+                             plan, reason=reason, avoid=sweeps)
     walls[door.wall] = walls[door.wall].with_opening(door_opening(door, plan))
+    sweeps.append(sweep)
     return door
 
 

@@ -195,12 +195,15 @@ def _leaf_frame_xy(wall: Wall, centre: float, width: float, hinge: Literal["star
     return (px + nx * offset, pz + nz * offset), along, (nx, nz)
 
 
+_ARC = np.linspace(0.0, math.pi / 2, 9)
+_ARC_COS, _ARC_SIN = np.cos(_ARC)[:, None], np.sin(_ARC)[:, None]
+
+
 def _swing_polygon(wall: Wall, centre: float, width: float, hinge: Literal["start", "end"],
                    room: int) -> Polygon:
     pivot, along, normal = _leaf_frame(wall, centre, width, hinge, room)
-    angles = np.linspace(0.0, math.pi / 2, 9)
-    arc = pivot + width * (np.cos(angles)[:, None] * along + np.sin(angles)[:, None] * normal)
-    return Polygon([tuple(pivot), *map(tuple, arc)])
+    arc = pivot + width * (_ARC_COS * along + _ARC_SIN * normal)
+    return shapely.polygons(np.vstack([pivot, arc]))
 
 
 def door_swing(door: Door, plan: FloorPlan) -> Polygon:
@@ -242,14 +245,15 @@ _SWEEP_OVERLAP = 1e-3
 
 def place_door(door_id: int, sites: Sequence[tuple[Wall, float]], rooms: tuple[int, int],
                plan: FloorPlan, *, reason: Literal["rule", "reachability", "front", "stair"],
-               avoid: Sequence[Polygon] = ()) -> Door:
+               avoid: Sequence[Polygon] = ()) -> tuple[Door, Polygon]:
     """The door :func:`make_door` hangs at the first of ``sites`` (wall, centre), unless
     its sweep crosses one of ``avoid`` (the sweeps of the doors already hung): then the
     first way, in the order of the module notes, whose sweep fits its room and crosses
-    none of them."""
+    none of them. Returns the door and its sweep."""
     first = make_door(door_id, sites[0][0], sites[0][1], rooms, plan, reason=reason)
-    if not avoid or _sweep_clear(door_swing_on(first, sites[0][0]), avoid):
-        return first
+    first_sweep = door_swing_on(first, sites[0][0])
+    if _sweep_clear(first_sweep, avoid):
+        return first, first_sweep
     swing_rooms = ([first.swing_room] if OUTSIDE in rooms else
                    [first.swing_room, rooms[0] if rooms[1] == first.swing_room else rooms[1]])
     for wall, centre in sites:
@@ -261,8 +265,8 @@ def place_door(door_id: int, sites: Sequence[tuple[Wall, float]], rooms: tuple[i
                 sweep = _swing_polygon(wall, centre, plan.settings.door_width, hinge, room)
                 if _sweep_clear(sweep, avoid):
                     return replace(first, wall=wall.id, position=wall.point_at(centre),
-                                   swing_room=room, hinge=hinge)
-    return first
+                                   swing_room=room, hinge=hinge), sweep
+    return first, first_sweep
 
 
 def door_swing_on(door: Door, wall: Wall) -> Polygon:
@@ -272,8 +276,10 @@ def door_swing_on(door: Door, wall: Wall) -> Polygon:
 
 
 def _sweep_clear(sweep: Polygon, others: Sequence[Polygon]) -> bool:
-    return not any(sweep.intersects(other) and sweep.intersection(other).area > _SWEEP_OVERLAP
-                   for other in others)
+    if not others:
+        return True
+    met = np.asarray(others, dtype=object)[shapely.intersects(sweep, others)]
+    return not (met.size and shapely.area(shapely.intersection(sweep, met)).max() > _SWEEP_OVERLAP)
 
 
 def _sweep_fits(room: Room, wall: Wall, centre: float, width: float,

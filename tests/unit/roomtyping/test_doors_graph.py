@@ -340,15 +340,16 @@ def test_a_door_is_hung_clear_of_the_sweep_of_a_door_already_hung():
     natural = make_door(0, wall, 1.0, (0, 1), plan, reason="rule")
     in_the_way = door_swing_on(natural, wall)
     # nothing in the way: hung as make_door hangs it
-    assert place_door(1, [(wall, 1.0)], (0, 1), plan, reason="rule") == replace(natural, id=1)
-    door = place_door(1, [(wall, 1.0), (wall, 4.0)], (0, 1), plan, reason="rule",
+    assert place_door(1, [(wall, 1.0)], (0, 1), plan, reason="rule")[0] == replace(natural, id=1)
+    door, sweep = place_door(1, [(wall, 1.0), (wall, 4.0)], (0, 1), plan, reason="rule",
                       avoid=[in_the_way])
-    assert door_swing_on(door, wall).intersection(in_the_way).area < 1e-3
+    assert sweep.equals(door_swing_on(door, wall))
+    assert sweep.intersection(in_the_way).area < 1e-3
     assert (door.hinge, door.swing_room) != (natural.hinge, natural.swing_room)
     assert math.dist(door.position, wall.point_at(1.0)) < 1e-9  # hung otherwise, not moved
     # every way of hanging it at 1.0 m meets a sweep on both sides: it moves along the wall
-    both = [in_the_way, door_swing_on(door, wall),
+    both = [in_the_way, sweep,
             *(door_swing_on(replace(natural, hinge=h, swing_room=r), wall)
               for h in ("start", "end") for r in (0, 1))]
-    moved = place_door(1, [(wall, 1.0), (wall, 4.0)], (0, 1), plan, reason="rule", avoid=both)
+    moved, _ = place_door(1, [(wall, 1.0), (wall, 4.0)], (0, 1), plan, reason="rule", avoid=both)
     assert math.dist(moved.position, wall.point_at(4.0)) < 1e-9
