@@ -18,6 +18,7 @@ without one.
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -77,6 +78,9 @@ class MakeFloor(Operation):
               doc="where a spine or hall runs across the building (0..1, 0.5: middle)"),
         Param("min_room_depth", "length", default=2.5, keyword_only=True,
               doc="least depth of the rooms between corridor and outer wall (m)"),
+        Param("max_room_depth", "length", default=7.5, keyword_only=True,
+              doc="spine: a building deeper than two bands of rooms this deep and the "
+                  "corridor gets parallel spines joined by a cross corridor (m)"),
         Param("n_left", "count", default=0, keyword_only=True,
               doc="spine: rooms of equal width on the low side (0: the BSP decides)"),
         Param("n_right", "count", default=0, keyword_only=True,
@@ -348,7 +352,10 @@ def _corridor(args: dict[str, Any], units: float) -> CorridorSpec:
         raise DerivationError(f"min_room_depth must be positive, got {depth / units:g}")
     if (args["n_left"] or args["n_right"]) and mode != "spine":
         raise DerivationError("n_left and n_right count rooms along a corridor=\"spine\"")
-    return CorridorSpec(mode, width, position, depth, args["n_left"], args["n_right"])  # type: ignore[arg-type]
+    # callers of apply() that predate max_room_depth; never below the least depth
+    deepest = max(args.get("max_room_depth", math.inf), depth)
+    return CorridorSpec(mode, width, position, depth, args["n_left"], args["n_right"],  # type: ignore[arg-type]
+                        max_depth=deepest)
 
 
 def floor_settings(args: dict[str, Any], storey: float, units: float) -> FloorSettings:

@@ -5,7 +5,12 @@ never cut) and, for the TFG's rooms-per-side control, the rooms along it.
 
 * ``"spine"``: a double-loaded corridor along the long axis of the footprint, wall to
   wall, with rooms on both sides (TFG corridor offices). ``position`` places it across
-  the building (0.5: in the middle), so one side can be deeper than the other.
+  the building (0.5: in the middle), so one side can be deeper than the other. A
+  building so deep that the rooms on either side would be deeper than ``max_depth``
+  gets as many parallel spines as keep every band of rooms within it, evenly spaced and
+  joined by a cross corridor through the middle of the bands between them (one
+  circulation face, a ladder): every room between two spines opens onto one of them,
+  and a bathroom need not run the depth of a 9 m band.
 * ``"hall"``: the same across the short axis, a hall from the front wall through the
   depth of a house with the rooms on both sides of it.
 * ``"centre_line"``: a corridor along the centre line of every wing of an L, U or T
@@ -28,6 +33,7 @@ squarified treemaps", corridors inserted between rooms.
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -74,6 +80,19 @@ class CorridorSpec:
     n_left: int = 0
     n_right: int = 0
     single_loaded: bool = False
+    max_depth: float = math.inf
+
+    def spines(self, depth: float) -> int:
+        """How many parallel spines a building ``depth`` deep across them gets: the
+        fewest that leave no band of rooms deeper than ``max_depth`` (one for a
+        ``hall``, a single-loaded corridor or rooms counted per side)."""
+        if (self.mode != "spine" or self.single_loaded or self.n_left or self.n_right
+                or not math.isfinite(self.max_depth)):
+            return 1
+        count = 1
+        while (depth - count * self.width) / (count + 1) > self.max_depth + _TOL:
+            count += 1
+        return count
 
 
 def circulation_faces(footprint: Sequence[Point], spec: CorridorSpec) -> list[FixedFace]:
@@ -117,6 +136,8 @@ def _straight(outline: Polygon, spec: CorridorSpec,
     runs_x = (maxx - minx >= maxz - minz) == along_long
     lo, hi = (minz, maxz) if runs_x else (minx, maxx)
     depth = hi - lo
+    if spec.spines(depth) > 1:
+        return _ladder(outline, spec, runs_x, spec.spines(depth)), (Polygon(), Polygon())
     loaded = 1 if spec.single_loaded else 2
     need = spec.width + loaded * spec.min_depth
     if depth < need - _TOL:
@@ -142,6 +163,27 @@ def _straight(outline: Polygon, spec: CorridorSpec,
     sides = (outline.intersection(band(lo - 1, start)), outline.intersection(band(end, hi + 1)))
     _check_free(outline.difference(corridor), spec)
     return corridor, sides
+
+
+def _ladder(outline: Polygon, spec: CorridorSpec, runs_x: bool, count: int) -> Polygon:
+    """``count`` evenly spaced spines across a rectangle's depth, joined by a cross
+    corridor in the middle of its length (see the module notes)."""
+    if abs(outline.area - shapely.envelope(outline).area) > 1e-6:
+        raise CirculationError("parallel spines need a rectangular footprint; use "
+                               "corridor=\"centre_line\" for L, U or T footprints")
+    minx, minz, maxx, maxz = outline.bounds
+    lo, hi = (minz, maxz) if runs_x else (minx, maxx)
+    start, end = (minx, maxx) if runs_x else (minz, maxz)
+    band = (hi - lo - count * spec.width) / (count + 1)
+    near = [round(lo + (k + 1) * band + k * spec.width, 6) for k in range(count)]
+    far = [round(e + spec.width, 6) for e in near]
+    middle = round((start + end) / 2 - spec.width / 2, 6)
+    pieces = [(start, e, end, f) for e, f in zip(near, far)]  # (along0, across0, ...)
+    pieces += [(middle, f, round(middle + spec.width, 6), e) for f, e in zip(far, near[1:])]
+    boxes = [box(a0, c0, a1, c1) if runs_x else box(c0, a0, c1, a1) for a0, c0, a1, c1 in pieces]
+    ladder = shapely.union_all(boxes)
+    _check_free(outline.difference(ladder), spec)
+    return orient(shapely.simplify(ladder, 0.0), sign=1.0)
 
 
 def _divide(side: Polygon | shapely.Geometry, count: int, along_long: bool) -> list[Polygon]:

@@ -75,14 +75,15 @@ L_LOT = "polygon((0,0),(16,0),(16,8),(8,8),(8,14),(0,14))"
     ("apartment_block", "20x15", range(6, 20)),
     ("house", "10x8", range(4, 10)), ("office", "12x9", range(4, 10)),
     ("house", L_LOT, range(6, 14)), ("office", L_LOT, range(6, 14)),
-    ("house", "16x6", range(4, 8))])
+    ("house", "16x6", range(4, 8)), ("office", "30x20", range(8, 20))])
 def test_demos_build_on_lots_far_from_what_they_were_written_for(name, lot, rooms, tmp_path):
     """Six to eight rooms a storey on 300–360 m² are 20–50 m² each, bigger than the
     tables' bathrooms, kitchens and bedrooms may be; on 80–110 m² none is as big as a
     living or meeting room: the re-draws aim at as many rooms as the floor holds, and
     the plans pass the same checks (sizes raised by at most 1.5x, each with a
     warning). On an L-shaped lot the demos' spine follows the footprint's centre line;
-    on a lot too shallow for rooms on both sides of it, it runs along one wall."""
+    on a lot too shallow for rooms on both sides of it, it runs along one wall, and on
+    one too deep for two bands of rooms, it becomes two spines joined across."""
     from cga.pipeline import build
 
     ground, upper = (read_table(ROOT / "rules" / t) for t in DEMOS[name])
@@ -94,6 +95,12 @@ def test_demos_build_on_lots_far_from_what_they_were_written_for(name, lot, room
                        for d in scene.diagnostics)
         if lot == "16x6":  # 6 m deep: the hall runs along one wall, rooms on the other side
             assert any("single-loaded" in d.message for d in scene.diagnostics)
+        if lot == "30x20":  # 20 m deep: two spines, no band of rooms deeper than 7.5 m
+            for plan in scene.floors:
+                (corridor,) = [r for r in plan.rooms if r.type == "Corridor"]
+                assert all(r.polygon.bounds[3] - r.polygon.bounds[1] <= 7.5 + 1e-6
+                           or r.polygon.bounds[2] - r.polygon.bounds[0] <= 7.5 + 1e-6
+                           for r in plan.rooms if not r.circulation)
         for plan in scene.floors:
             problems = floor_problems(plan, ground if plan.index == 0 else upper)
             assert not problems, f"{name} on {lot}, seed {seed} floor {plan.index}: {problems}"

@@ -52,6 +52,30 @@ def test_single_loaded_corridor_runs_along_the_wall_position_leans_to(position, 
         circulation_faces(rect(20, 3.6), CorridorSpec("spine", single_loaded=True))
 
 
+def test_a_deep_building_gets_parallel_spines_joined_by_a_cross_corridor():
+    # 20 m deep: one 1.6 m spine leaves two 9.2 m bands, deeper than 7.5 m
+    poly, faces = corridor(rect(30, 20), mode="spine", width=1.6, max_depth=7.5)
+    assert len(faces) == 1 and poly.is_valid and not poly.interiors
+    spine = [box(0, 5.6, 30, 7.2), box(0, 12.8, 30, 14.4)]
+    cross = box(14.2, 7.2, 15.8, 12.8)
+    assert poly.symmetric_difference(spine[0].union(spine[1]).union(cross)).area < 1e-9
+    free = Polygon(rect(30, 20)).difference(poly)
+    bands = sorted(round(g.bounds[3] - g.bounds[1], 6) for g in free.geoms)
+    assert bands == [5.6] * 4  # no band deeper than 7.5 m; the middle one halved
+    # every band touches a spine along its whole length
+    assert all(g.boundary.intersection(poly.boundary).length >= g.bounds[2] - g.bounds[0] - 1e-9
+               for g in free.geoms)
+
+
+@pytest.mark.parametrize("spec", [
+    dict(max_depth=7.5),  # 12 m: one spine leaves 5.4 m bands
+    dict(max_depth=4, n_left=2, n_right=2),  # rooms counted per side: one spine
+])
+def test_one_spine_where_bands_are_shallow_enough_or_rooms_are_counted(spec):
+    poly, _ = corridor(rect(20, 12), mode="spine", **spec)
+    assert poly.equals(box(0, 5.4, 20, 6.6))
+
+
 def test_rooms_per_side_divide_each_side_evenly():
     _, faces = corridor(rect(20, 12), mode="spine", n_left=4, n_right=2)
     rooms = [Polygon(f.polygon) for f in faces[1:]]
