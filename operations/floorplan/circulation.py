@@ -10,7 +10,8 @@ never cut) and, for the TFG's rooms-per-side control, the rooms along it.
   gets as many parallel spines as keep every band of rooms within it, evenly spaced and
   joined by a cross corridor through the middle of the bands between them (one
   circulation face, a ladder): every room between two spines opens onto one of them,
-  and a bathroom need not run the depth of a 9 m band.
+  and a bathroom need not run the depth of a 9 m band. So does a ``centre_line``
+  corridor on a rectangle that deep (its centre line is its spine).
 * ``"hall"``: the same across the short axis, a hall from the front wall through the
   depth of a house with the rooms on both sides of it.
 * ``"centre_line"``: a corridor along the centre line of every wing of an L, U or T
@@ -35,7 +36,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Literal
 
 import shapely
@@ -115,6 +116,8 @@ def _faces(footprint: tuple[Point, ...], spec: CorridorSpec) -> tuple[FixedFace,
     """:func:`circulation_faces` on hashable arguments, cached (every floor of a
     building asks for the same corridor)."""
     outline = Polygon(footprint)
+    if spec.mode == "centre_line" and _deep_rectangle(outline, spec):
+        spec = replace(spec, mode="spine")  # a rectangle's centre line is its spine
     if spec.mode == "centre_line":
         corridor = _centre_line(outline, spec)
         return (FixedFace(_ring(corridor), circulation=True, kind="corridor"),)
@@ -163,6 +166,16 @@ def _straight(outline: Polygon, spec: CorridorSpec,
     sides = (outline.intersection(band(lo - 1, start)), outline.intersection(band(end, hi + 1)))
     _check_free(outline.difference(corridor), spec)
     return corridor, sides
+
+
+def _deep_rectangle(outline: Polygon, spec: CorridorSpec) -> bool:
+    """Whether ``outline`` is a rectangle too deep across its long axis for one spine
+    (a one-wing footprint given ``centre_line``, e.g. a grammar for an L built on a
+    rectangular ``--lot``)."""
+    if abs(outline.area - shapely.envelope(outline).area) > 1e-6:
+        return False
+    minx, minz, maxx, maxz = outline.bounds
+    return replace(spec, mode="spine").spines(min(maxx - minx, maxz - minz)) > 1
 
 
 def _ladder(outline: Polygon, spec: CorridorSpec, runs_x: bool, count: int) -> Polygon:

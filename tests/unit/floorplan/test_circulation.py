@@ -106,3 +106,11 @@ def test_centre_line_reaches_every_wing_and_leaves_min_depth(footprint, pieces):
 def test_centre_line_refuses_slanted_walls():
     with pytest.raises(CirculationError, match="rectilinear"):
         circulation_faces([(0, 0), (20, 0), (20, 12), (2, 14)], CorridorSpec("centre_line"))
+
+
+def test_centre_line_on_a_deep_rectangle_is_its_ladder_of_spines():
+    ladder, _ = corridor(rect(30, 20), mode="spine", width=1.6, max_depth=7.5)
+    centre, _ = corridor(rect(30, 20), mode="centre_line", width=1.6, max_depth=7.5)
+    assert centre.equals(ladder)
+    shallow, _ = corridor(rect(30, 12), mode="centre_line", width=1.6, max_depth=7.5)
+    assert shallow.equals(box(0, 5.2, 30, 6.8))
