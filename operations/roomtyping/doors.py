@@ -60,6 +60,8 @@ DOOR_MARGIN = 0.1
 Interval = tuple[float, float]
 """A stretch of a wall: distances (m) of its ends from the wall's start."""
 
+Hinge = Literal["start", "end"]
+
 
 def door_spans(plan: FloorPlan) -> dict[int, Interval]:
     """The stretch of every wall where a door opening may lie, ignoring other openings.
@@ -257,9 +259,10 @@ def place_door(door_id: int, sites: Sequence[tuple[Wall, float]], rooms: tuple[i
     swing_rooms = ([first.swing_room] if OUTSIDE in rooms else
                    [first.swing_room, rooms[0] if rooms[1] == first.swing_room else rooms[1]])
     for wall, centre in sites:
-        natural = "start" if centre <= wall.length / 2 else "end"
+        hinges: tuple[Hinge, Hinge] = (("start", "end") if centre <= wall.length / 2
+                                       else ("end", "start"))  # the natural one first
         for room in swing_rooms:
-            for hinge in (natural, "end" if natural == "start" else "start"):
+            for hinge in hinges:
                 if not _sweep_fits(plan.room(room), wall, centre, plan.settings.door_width, hinge):
                     continue
                 sweep = _swing_polygon(wall, centre, plan.settings.door_width, hinge, room)
