@@ -78,7 +78,7 @@ class MakeFloor(Operation):
               doc="where a spine or hall runs across the building (0..1, 0.5: middle)"),
         Param("min_room_depth", "length", default=2.5, keyword_only=True,
               doc="least depth of the rooms between corridor and outer wall (m)"),
-        Param("max_room_depth", "length", default=7.5, keyword_only=True,
+        Param("max_room_depth", "length", default=6.0, keyword_only=True,
               doc="spine: a building deeper than two bands of rooms this deep and the "
                   "corridor gets parallel spines joined by a cross corridor (m)"),
         Param("n_left", "count", default=0, keyword_only=True,

@@ -95,11 +95,11 @@ def test_demos_build_on_lots_far_from_what_they_were_written_for(name, lot, room
                        for d in scene.diagnostics)
         if lot == "16x6":  # 6 m deep: the hall runs along one wall, rooms on the other side
             assert any("single-loaded" in d.message for d in scene.diagnostics)
-        if lot == "30x20":  # 20 m deep: two spines, no band of rooms deeper than 7.5 m
+        if lot == "30x20":  # 20 m deep: parallel spines, no band of rooms deeper than 6 m
             for plan in scene.floors:
                 (corridor,) = [r for r in plan.rooms if r.type == "Corridor"]
-                assert all(r.polygon.bounds[3] - r.polygon.bounds[1] <= 7.5 + 1e-6
-                           or r.polygon.bounds[2] - r.polygon.bounds[0] <= 7.5 + 1e-6
+                assert all(r.polygon.bounds[3] - r.polygon.bounds[1] <= 6 + 1e-6
+                           or r.polygon.bounds[2] - r.polygon.bounds[0] <= 6 + 1e-6
                            for r in plan.rooms if not r.circulation)
         for plan in scene.floors:
             problems = floor_problems(plan, ground if plan.index == 0 else upper)
