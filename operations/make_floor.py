@@ -238,27 +238,23 @@ def _corridor_faces(ring: list[tuple[float, float]], spec: CorridorSpec, footpri
         return circulation_faces(ring, spec)
     except CirculationError as error:
         straight_failed = error
-    if spec.mode in ("spine", "hall") and footprint.area < footprint.envelope.area - 1e-6:
-        try:
-            fixed = circulation_faces(ring, replace(spec, mode="centre_line"))
-        except CirculationError:
-            pass
-        else:
-            ctx.report(Diagnostic("warning", "make_floor", (
+    fallbacks: list[tuple[CorridorSpec, str]] = []
+    if spec.mode in ("spine", "hall"):
+        if footprint.area < footprint.envelope.area - 1e-6:
+            fallbacks.append((replace(spec, mode="centre_line"), (
                 f"a straight {spec.mode} corridor does not fit this footprint "
                 f"({straight_failed}); the corridor follows the footprint's centre line "
-                "instead (corridor = \"centre_line\")"), floor=index))
-            return fixed
-    if spec.mode in ("spine", "hall"):
+                "instead (corridor = \"centre_line\")")))
+        fallbacks.append((replace(spec, single_loaded=True), (
+            f"{straight_failed}, so the {spec.mode} runs along the outer wall with rooms "
+            "on one side only (single-loaded)")))
+    for fallback, message in fallbacks:
         try:
-            fixed = circulation_faces(ring, replace(spec, single_loaded=True))
+            fixed = circulation_faces(ring, fallback)
         except CirculationError:
-            pass
-        else:
-            ctx.report(Diagnostic("warning", "make_floor", (
-                f"{straight_failed}, so the {spec.mode} runs along the outer wall with rooms "
-                "on one side only (single-loaded)"), floor=index))
-            return fixed
+            continue
+        ctx.report(Diagnostic("warning", "make_floor", message, floor=index))
+        return fixed
     raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {straight_failed}",
                           hint=_footprint_size(footprint)) from None
 

@@ -139,8 +139,9 @@ def _straight(outline: Polygon, spec: CorridorSpec,
     runs_x = (maxx - minx >= maxz - minz) == along_long
     lo, hi = (minz, maxz) if runs_x else (minx, maxx)
     depth = hi - lo
-    if spec.spines(depth) > 1:
-        return _ladder(outline, spec, runs_x, spec.spines(depth)), (Polygon(), Polygon())
+    spines = spec.spines(depth)
+    if spines > 1:
+        return _ladder(outline, spec, runs_x, spines), (Polygon(), Polygon())
     loaded = 1 if spec.single_loaded else 2
     need = spec.width + loaded * spec.min_depth
     if depth < need - _TOL:
@@ -157,7 +158,7 @@ def _straight(outline: Polygon, spec: CorridorSpec,
     end = round(start + spec.width, 6)
     strip = box(minx - 1, start, maxx + 1, end) if runs_x else box(start, minz - 1, end, maxz + 1)
     corridor = outline.intersection(strip)
-    if not isinstance(corridor, Polygon) or abs(corridor.area - shapely.envelope(corridor).area) > 1e-6 \
+    if not isinstance(corridor, Polygon) or not _is_rectangle(corridor) \
             or abs(corridor.area - spec.width * (maxx - minx if runs_x else maxz - minz)) > 1e-6:
         raise CirculationError("a straight corridor from wall to wall does not fit this "
                                "footprint; use corridor=\"centre_line\" for L, U or T footprints")
@@ -168,11 +169,16 @@ def _straight(outline: Polygon, spec: CorridorSpec,
     return corridor, sides
 
 
+def _is_rectangle(polygon: Polygon) -> bool:
+    """Whether ``polygon`` fills its bounding box (an axis-aligned rectangle)."""
+    return abs(polygon.area - shapely.envelope(polygon).area) <= 1e-6
+
+
 def _deep_rectangle(outline: Polygon, spec: CorridorSpec) -> bool:
     """Whether ``outline`` is a rectangle too deep across its long axis for one spine
     (a one-wing footprint given ``centre_line``, e.g. a grammar for an L built on a
     rectangular ``--lot``)."""
-    if abs(outline.area - shapely.envelope(outline).area) > 1e-6:
+    if not _is_rectangle(outline):
         return False
     minx, minz, maxx, maxz = outline.bounds
     return replace(spec, mode="spine").spines(min(maxx - minx, maxz - minz)) > 1
@@ -181,7 +187,7 @@ def _deep_rectangle(outline: Polygon, spec: CorridorSpec) -> bool:
 def _ladder(outline: Polygon, spec: CorridorSpec, runs_x: bool, count: int) -> Polygon:
     """``count`` evenly spaced spines across a rectangle's depth, joined by a cross
     corridor in the middle of its length (see the module notes)."""
-    if abs(outline.area - shapely.envelope(outline).area) > 1e-6:
+    if not _is_rectangle(outline):
         raise CirculationError("parallel spines need a rectangular footprint; use "
                                "corridor=\"centre_line\" for L, U or T footprints")
     minx, minz, maxx, maxz = outline.bounds
@@ -203,7 +209,7 @@ def _divide(side: Polygon | shapely.Geometry, count: int, along_long: bool) -> l
     """``count`` rooms of equal width along a rectangular side (none for count 0)."""
     if count <= 0:
         return []
-    if not isinstance(side, Polygon) or abs(side.area - shapely.envelope(side).area) > 1e-6:
+    if not isinstance(side, Polygon) or not _is_rectangle(side):
         raise CirculationError("rooms per side (n_left, n_right) need a rectangular footprint")
     minx, minz, maxx, maxz = side.bounds
     if maxx - minx >= maxz - minz:

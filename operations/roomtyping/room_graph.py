@@ -23,7 +23,6 @@ reachability doors, the fewest doors it can that give every room a way in from t
 that passes no private room (the private room itself may be the end of that way).
 """
 
-
 from __future__ import annotations
 
 import heapq
@@ -198,6 +197,11 @@ def privacy_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: DoorSites
     reached = {entry}
     stack = [entry]
     added: list[Pair] = []
+
+    def preference(pair: Pair) -> tuple:
+        inside, outside = (pair if pair[0] in reached else pair[::-1])
+        return (-by_id[outside].area, -len(doors[inside]), -sites.longest(pair), pair)
+
     while True:
         while stack:
             room = stack.pop()
@@ -211,11 +215,6 @@ def privacy_pairs(rooms: Sequence[Room], pairs: Sequence[Pair], sites: DoorSites
                       and opens_on(a if a in reached else b)]
         if not candidates:
             break
-
-        def preference(pair: Pair) -> tuple:
-            inside, outside = (pair if pair[0] in reached else pair[::-1])
-            return (-by_id[outside].area, -len(doors[inside]), -sites.longest(pair), pair)
-
         a, b = min(candidates, key=preference)
         added.append((a, b))
         doors[a].add(b)

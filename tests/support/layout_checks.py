@@ -23,8 +23,9 @@ from shapely.geometry import Point, Polygon
 
 from cga.model import OUTSIDE
 
+from typing_checks import PRIVATE_PARTS
+
 STAIR = "Stair"
-PRIVATE_NAMES = ("bed", "bath", "toilet", "shower", "wc")
 SWEEP_OVERLAP = 0.01  # m² two leaves' sweeps may share (numerical noise)
 
 __all__ = ["Table", "read_table", "floor_problems"]
@@ -56,7 +57,7 @@ def _private(row) -> bool:
     value = (row.get("passThrough") or "").strip().lower()
     if value:
         return value in ("0", "false")
-    return any(part in row["Type"].lower() for part in PRIVATE_NAMES)
+    return any(part in row["Type"].lower() for part in PRIVATE_PARTS)
 
 
 def _sweep(plan, door) -> Polygon:
