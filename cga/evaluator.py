@@ -43,8 +43,8 @@ from shapely.geometry import Polygon
 
 from . import ast
 from .binding import bind_arguments
-from .errors import (BudgetError, CGAError, DerivationError, ResourceAccessError, ResourceNotFoundError,
-                     SourceError, Span, UsageError)
+from .errors import (BudgetError, CGAError, DerivationError, NoSolutionError, ResourceAccessError,
+                     ResourceNotFoundError, SourceError, Span, UsageError)
 from .expressions import UNKNOWN, Namespace, Value, describe, evaluate, shape_attributes
 from .lot import DEFAULT_LOT, lot_from_call, rectangle
 from .model import Diagnostic
@@ -54,7 +54,7 @@ from .resources import resolve_resource
 from .sandbox import Sandbox
 from .shape import Mass, Shape
 from cga.registry import OperationRegistry, UnknownOperation
-from cga.operation import Child, Operation, OperationContext
+from cga.operation import PARALLEL_SPINES_USED, Child, Operation, OperationContext
 
 if TYPE_CHECKING:  # pragma: no cover
     from cga.operations.furniture.library import ModelLibrary
@@ -322,6 +322,7 @@ class _Run:
     timings: dict[str, float] = field(default_factory=lambda: defaultdict(float))
     cache: dict[str, Any] = field(default_factory=dict)
     shapes: int = 1
+    parallel_spines: bool = True
 
 
 def check_max_depth(max_depth: int) -> None:
@@ -407,6 +408,12 @@ class Evaluator:
     def derive(self, lot: Polygon | None = None) -> Derivation:
         """Derive the shape tree from ``lot`` (metres), the grammar's ``Lot:`` or the default.
 
+        A floor too deep for one corridor is laid on parallel spines (``make_floor``'s
+        ``max_room_depth``), whose middle band has no outer wall: a table whose rooms
+        need windows may then type no layout of it. Such a derivation is made once more
+        with every floor on one spine, as before the spines, with a warning (not with
+        ``strict``); if that fails too, the first error is raised.
+
         Raises
         ------
         DerivationError
@@ -416,10 +423,32 @@ class Evaluator:
         """
         variables = evaluate_variables(self.grammar, self.seed, self.overrides)
         footprint = lot if lot is not None else self._grammar_lot(variables)
+        run = _Run(variables=variables)
+        try:
+            return self._derive(footprint, run, parallel_spines=True)
+        except NoSolutionError as error:
+            if self.strict or not run.cache.get(PARALLEL_SPINES_USED):
+                raise
+            first = error
+        retry = _Run(variables=variables)
+        try:
+            derivation = self._derive(footprint, retry, parallel_spines=False)
+        except CGAError:
+            raise first from None
+        why = str(first).splitlines()[0]
+        derivation.diagnostics.insert(0, Diagnostic("warning", "make_floor", (
+            f"no layout on parallel spines could be typed ({why}), so every floor was laid "
+            "on one spine, its rooms deeper than max_room_depth")))
+        for name, seconds in run.timings.items():
+            derivation.timings[name] = derivation.timings.get(name, 0.0) + seconds
+        return derivation
+
+    def _derive(self, footprint: Polygon, run: _Run, *, parallel_spines: bool) -> Derivation:
+        """:meth:`derive` in one pass, ``parallel_spines`` as given to the operations."""
         symbol = start_symbol(self.grammar)
         mass = Mass(footprint=footprint, base=0.0, height=0.0)
         root = DerivedShape(Shape(symbol=symbol, path=(symbol,), scope=mass.scope(), geometry=mass))
-        run = _Run(variables=variables)
+        run.parallel_spines = parallel_spines
         terminals: list[Shape] = []
         stack = [root]
         try:
@@ -435,7 +464,7 @@ class Evaluator:
         except CGAError as error:  # keep what the derivation said before it failed
             error.diagnostics = (*run.diagnostics, *error.diagnostics)
             raise
-        return Derivation(root=root, terminals=terminals, variables=variables,
+        return Derivation(root=root, terminals=terminals, variables=dict(run.variables),
                           units=self.units, lot=footprint, diagnostics=run.diagnostics,
                           timings=dict(run.timings))
 
@@ -496,7 +525,8 @@ class Evaluator:
             rng=rng, units=self.units, resolve=self._resolver(call),
             report=run.diagnostics.append, span=call.span, successor_count=len(successors),
             cache=run.cache, seed=self.seed, strict=self.strict, base_dir=self.base_dir,
-            library=self.library, sandbox=self.sandbox, shapes_left=MAX_SHAPES - run.shapes)
+            library=self.library, sandbox=self.sandbox, shapes_left=MAX_SHAPES - run.shapes,
+            parallel_spines=run.parallel_spines)
         started = time.perf_counter()
         try:
             children = operation.apply(shape, args, ctx)

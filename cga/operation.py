@@ -36,7 +36,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cga.shape import Shape
 
 __all__ = ["REQUIRED", "ParamKind", "Param", "Child", "OperationContext", "CheckContext",
-           "Operation", "is_number"]
+           "Operation", "PARALLEL_SPINES_USED", "is_number"]
 
 ParamKind = Literal["length", "area", "number", "count", "bool", "string", "path", "axis",
                     "tuple", "range"]
@@ -102,7 +102,11 @@ class OperationContext:
     from ``base_dir``). ``sandbox`` holds the folders files may be read from
     (:mod:`cga.sandbox`); None reads any. ``shapes_left`` is how many more shapes the
     derivation may make (:data:`cga.evaluator.MAX_SHAPES`); an operation that can tell in
-    advance that it would make more refuses.
+    advance that it would make more refuses. ``parallel_spines`` says whether
+    ``make_floor`` may lay a floor too deep for one corridor on parallel spines (its
+    ``max_room_depth``); one that does notes it in ``cache`` under
+    :data:`PARALLEL_SPINES_USED`, and the evaluator derives a grammar whose rooms then
+    cannot be typed once more without them (:meth:`cga.evaluator.Evaluator.derive`).
     """
 
     rng: np.random.Generator
@@ -118,6 +122,12 @@ class OperationContext:
     library: "ModelLibrary | None" = None
     sandbox: "Sandbox | None" = None
     shapes_left: int | None = None
+    parallel_spines: bool = True
+
+
+PARALLEL_SPINES_USED = "make_floor: parallel spines"
+"""The :attr:`OperationContext.cache` key an operation sets when it laid a floor on
+parallel spines (see :class:`OperationContext`)."""
 
 
 @dataclass

@@ -30,7 +30,7 @@ from cga.model import Diagnostic, FloorPlan, FloorSettings, StairCore
 from cga.randomness import stream
 from cga.shape import Mass, Shape
 
-from cga.operation import Child, Operation, OperationContext, Param, is_number
+from cga.operation import PARALLEL_SPINES_USED, Child, Operation, OperationContext, Param, is_number
 
 if TYPE_CHECKING:
     from .floorplan.bsp import FixedFace, Partition
@@ -145,7 +145,11 @@ class MakeFloor(Operation):
         index = int(shape.attrs.get("floor", 0))
         ring = list(footprint.exterior.coords)[:-1]
         spec = _corridor(args, ctx.units)
+        if not ctx.parallel_spines:
+            spec = replace(spec, max_depth=math.inf)
         fixed = _corridor_faces(ring, spec, footprint, ctx, index)
+        if _on_parallel_spines(ring, spec, fixed):
+            ctx.cache[PARALLEL_SPINES_USED] = True
         try:
             core = _core(shape, args, ctx, footprint, mass.height, settings,
                          [Polygon(f.polygon) for f in fixed])
@@ -257,6 +261,20 @@ def _corridor_faces(ring: list[tuple[float, float]], spec: CorridorSpec, footpri
         return fixed
     raise DerivationError(f"make_floor cannot carve a {spec.mode} corridor: {straight_failed}",
                           hint=_footprint_size(footprint)) from None
+
+
+def _on_parallel_spines(ring: list[tuple[float, float]], spec: CorridorSpec,
+                        corridor: list[FixedFace]) -> bool:
+    """Whether ``corridor`` is a ladder of parallel spines (``max_room_depth``) where
+    the options without that limit give one spine."""
+    from .floorplan.circulation import CirculationError, circulation_faces
+
+    if not math.isfinite(spec.max_depth):
+        return False
+    try:
+        return circulation_faces(ring, replace(spec, max_depth=math.inf)) != corridor
+    except CirculationError:
+        return False
 
 
 def _rooms_made(result: Partition, core: StairCore | None) -> int:

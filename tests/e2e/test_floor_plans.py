@@ -124,3 +124,33 @@ def test_thesis_tables_make_no_bedroom_or_bathroom_a_passage():
         for plan in floors("seed_compat", seed):
             problems = floor_problems(plan, table)
             assert not problems, f"seed_compat seed {seed} floor {plan.index}: {problems}"
+
+
+DEEP_OFFICE = """units = 1;
+Lot: rectangle(25, 20)
+Rules:
+Lot --> extrude(6.6) Body
+Body --> repeated_split("Y", 3.3){Storey}
+Storey --> make_floor(16, 0.15, 3>1.5>1.5, 1.0, 2.2, corridor = "spine", corridor_width = 2.0,
+                      corridor_position = 0.25, min_room_width = 2, min_room_area = 4) Floor
+Floor --> type_rooms("office_types.csv") Typed
+"""
+"""An office 20 m deep with its spine off-centre: the office table types no layout on
+the parallel spines its depth gets (the middle band's rooms have no window), but it
+does on the one spine the grammar asks for."""
+
+
+@pytest.mark.slow
+def test_a_floor_no_typing_fits_on_parallel_spines_is_laid_on_one_spine():
+    table = read_table(ROOT / "rules" / "office_types.csv")
+    for seed in range(3):
+        derivation = Evaluator(parse(DEEP_OFFICE, "deep_office.grammar"), seed=seed,
+                               base_dir=ROOT / "demos").derive()
+        assert any(d.level == "warning" and "laid on one spine" in d.message
+                   for d in derivation.diagnostics)
+        scene = Scene(name="deep_office", seed=seed, units=derivation.units,
+                      terminals=derivation.terminals, diagnostics=list(derivation.diagnostics))
+        for plan in scene.floors:
+            (corridor,) = [r.polygon for r in plan.rooms if r.type == "Corridor"]
+            assert corridor.equals(corridor.envelope)  # one straight spine, no ladder
+            assert not floor_problems(plan, table), f"seed {seed} floor {plan.index}"

@@ -308,3 +308,24 @@ def test_a_room_kept_whole_by_its_hall_contact_says_so():
                        min_width=2.0, min_area=4.0, min_contact=1.5)
     assert result.shortfall is not None
     assert "keep 1.50 m of wall on a hall or corridor" in result.shortfall
+
+
+def test_a_deep_floor_on_parallel_spines_is_noted_for_the_evaluator():
+    """The evaluator derives a grammar once more without parallel spines when its rooms
+    cannot be typed on them; make_floor notes where it laid them and obeys the switch."""
+    from cga.operation import PARALLEL_SPINES_USED
+
+    deep = storey(box(0, 0, 30, 20))
+    corridors = {}
+    for allowed in (True, False):
+        ctx, _ = context()
+        ctx.parallel_spines = allowed
+        [child] = MakeFloor().apply(deep, args(split=12, corridor="spine"), ctx)
+        validate_plan(child.plan)
+        assert ctx.cache.get(PARALLEL_SPINES_USED, False) is allowed
+        (corridors[allowed],) = [r.polygon for r in child.plan.rooms if r.circulation]
+    assert not corridors[True].equals(corridors[True].envelope)  # two spines joined across
+    assert corridors[False].equals(box(0, 9.4, 30, 10.6))  # one 1.2 m spine in the middle
+    ctx, _ = context()
+    MakeFloor().apply(storey(box(0, 0, 20, 12)), args(split=7, corridor="spine"), ctx)
+    assert PARALLEL_SPINES_USED not in ctx.cache  # 12 m deep: one spine suffices
