@@ -169,8 +169,7 @@ class _Cells:
         size = int(self.start[-1])
         below = np.bincount(cell, weights=step * (height <= y0), minlength=size)
         total = np.bincount(cell, weights=step, minlength=size)
-        enters = np.bincount(cell, weights=over & down & (height > y0) & (height < y1),
-                             minlength=size) > 0
+        enters = _entered(cell, height, step, over & (height > y0) & (height < y1), size)
         wrong = ((below != 0) & (below != 1)) | (total != 0)
         valid = solids.ok & (np.bincount(self.owner[wrong], minlength=count) == 0)
         return (below == 1) | enters, valid
@@ -183,6 +182,21 @@ class _Cells:
         last = np.flatnonzero(inside & ~after)
         x0, z0, x1, z1 = self.corners
         return shapely.box(x0[first], z0[first], x1[last], z1[last]), self.owner[first]
+
+
+def _entered(cell: np.ndarray, height: np.ndarray, step: np.ndarray, in_band: np.ndarray,
+             size: int) -> np.ndarray:
+    """Per cell, whether the line through it enters the solid inside the band: at some
+    height there more faces above the cell look down than up. A face looking down with
+    one looking up at its very height (a sheet of no thickness, which a boolean of
+    manifold3d can leave behind) enters nothing, as manifold3d's trim finds."""
+    entered = np.zeros(size, dtype=bool)
+    if in_band.any():
+        places, at = np.unique(np.column_stack([cell[in_band], height[in_band]]), axis=0,
+                               return_inverse=True)
+        net = np.bincount(at.ravel(), weights=step[in_band], minlength=len(places))
+        entered[places[net > 0, 0].astype(np.int64)] = True
+    return entered
 
 
 def _lines(values: np.ndarray, owner: np.ndarray,
