@@ -425,14 +425,14 @@ class Evaluator:
         footprint = lot if lot is not None else self._grammar_lot(variables)
         run = _Run(variables=variables)
         try:
-            return self._derive(footprint, run, parallel_spines=True)
+            return self._derive(footprint, run)
         except NoSolutionError as error:
             if self.strict or not run.cache.get(PARALLEL_SPINES_USED):
                 raise
             first = error
-        retry = _Run(variables=variables)
+        retry = _Run(variables=variables, parallel_spines=False)
         try:
-            derivation = self._derive(footprint, retry, parallel_spines=False)
+            derivation = self._derive(footprint, retry)
         except CGAError:
             raise first from None
         why = str(first).splitlines()[0]
@@ -443,12 +443,12 @@ class Evaluator:
             derivation.timings[name] = derivation.timings.get(name, 0.0) + seconds
         return derivation
 
-    def _derive(self, footprint: Polygon, run: _Run, *, parallel_spines: bool) -> Derivation:
-        """:meth:`derive` in one pass, ``parallel_spines`` as given to the operations."""
+    def _derive(self, footprint: Polygon, run: _Run) -> Derivation:
+        """:meth:`derive` in one pass, with ``run``'s state (its ``parallel_spines`` goes to
+        the operations)."""
         symbol = start_symbol(self.grammar)
         mass = Mass(footprint=footprint, base=0.0, height=0.0)
         root = DerivedShape(Shape(symbol=symbol, path=(symbol,), scope=mass.scope(), geometry=mass))
-        run.parallel_spines = parallel_spines
         terminals: list[Shape] = []
         stack = [root]
         try:
