@@ -18,7 +18,10 @@ plan per storey, so after the derivation the wings of a storey are joined into o
   rooms (halls, corridors) that face each other across it, the widest stretch they
   share, so a robot entering by one front door reaches every wing; wings without such a
   pair stay joined only through the outside (each has its own front door), which the
-  plan's diagnostics say.
+  plan's diagnostics say;
+* last, each stretch where two party walls stand back to back becomes one inner wall
+  between the rooms on either side, as thick as both: every door, the doorways between
+  wings too, then lies in the wall between the rooms it joins.
 
 A wing's front door may lie in a party wall only if the rules put it there; it then
 opens into the neighbour's wall, and the navigability report names that door.
@@ -26,7 +29,8 @@ opens into the neighbour's wall, and the navigability report names that door.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import itertools
+from collections.abc import Iterator, Sequence
 from dataclasses import replace
 
 import networkx as nx
@@ -117,7 +121,7 @@ def _join(wings: list[FloorPlan]) -> FloorPlan:
     plan = _join_circulation(plan, party, owner, len(shifted), joined)
     if had_front and plan.front_door() is None:
         plan = _new_front_door(plan, party)
-    return plan
+    return _merged_party_walls(plan, party, owner)
 
 
 def _shift(plan: FloorPlan, rooms: int, walls: int, doors: int, windows: int) -> FloorPlan:
@@ -431,3 +435,109 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
     return plan.with_changes(walls=tuple(walls[w.id] for w in plan.walls), doors=tuple(doors),
                              furniture=tuple(furniture), room_graph=graph,
                              diagnostics=diagnostics)
+
+
+def _merged_party_walls(plan: FloorPlan, party: dict[int, LineString],
+                        owner: dict[int, int]) -> FloorPlan:
+    """Each stretch where two wings' party walls stand back to back becomes one inner
+    wall between the two rooms, as thick as both and centred on the line the wings
+    meet on: the very solid the two made, and a doorway between the wings is a door in
+    the wall between the rooms it joins, like every other door (its opening cut once).
+    What is left of a party wall past its stretches stays an outer wall with the
+    openings there. Doors, windows and the room graph name the wall that now holds
+    them; walls keep their order, the merged ones after them, and new pieces and
+    merged walls take new ids."""
+    stretches = _back_to_back(plan, party, owner)
+    if not stretches:
+        return plan
+    ids = itertools.count(max(w.id for w in plan.walls) + 1)
+    cuts: dict[int, list[tuple[float, float, Wall]]] = {}  # party wall → (from, to, merged)
+    merged = []
+    for wall_a, wall_b, t0, t1 in stretches:
+        left, right = _inside(wall_a), _inside(wall_b)
+        wall = Wall(next(ids), wall_a.point_at(t0), wall_a.point_at(t1), outer=False,
+                    rooms=(left, right) if wall_a.rooms[1] == OUTSIDE else (right, left),
+                    thickness=wall_a.thickness + wall_b.thickness)
+        merged.append(wall)
+        for party_wall in (wall_a, wall_b):
+            ends = sorted(party_wall.segment().project(Point(p)) for p in (wall.start, wall.end))
+            cuts.setdefault(party_wall.id, []).append((ends[0], ends[1], wall))
+    walls: list[Wall] = []
+    parts: dict[int, list[tuple[float, float, Wall]]] = {}  # cut wall → what holds each stretch
+    for wall in plan.walls:
+        if wall.id not in cuts:
+            walls.append(wall)
+            continue
+        parts[wall.id] = _parts(wall, sorted(cuts[wall.id], key=lambda c: c[0]), ids)
+        walls += [part for _, _, part in parts[wall.id] if part.outer]
+    walls += merged
+    by_id = {w.id: w for w in walls}
+
+    def holder(wall_id: int, point: tuple[float, float]) -> Wall:
+        """The wall that now holds ``point`` of cut wall ``wall_id``."""
+        along = plan.wall(wall_id).segment().project(Point(point))
+        return next(part for lo, hi, part in parts[wall_id] if lo - _TOUCH <= along <= hi + _TOUCH)
+
+    for old in (w for w in plan.walls if w.id in parts):
+        for opening in old.openings:
+            point = old.point_at(opening.center)
+            target = by_id[holder(old.id, point).id]
+            at = target.segment().project(Point(point))
+            if not any(o.kind == opening.kind and abs(o.center - at) < _TOUCH
+                       for o in target.openings):  # the doorway's two openings in line: one
+                by_id[target.id] = target.with_opening(replace(opening, center=at))
+    moved = {d.id: holder(d.wall, d.position).id for d in plan.doors if d.wall in parts}
+    graph = plan.room_graph.copy() if plan.room_graph is not None else None
+    for _, _, data in graph.edges(data=True) if graph is not None else ():
+        if data.get("door") in moved:
+            data["wall"] = moved[data["door"]]
+    return plan.with_changes(
+        walls=tuple(by_id[w.id] for w in walls), room_graph=graph,
+        doors=tuple(replace(d, wall=moved[d.id]) if d.id in moved else d for d in plan.doors),
+        windows=tuple(replace(w, wall=holder(w.wall, w.position).id) if w.wall in parts else w
+                      for w in plan.windows))
+
+
+def _back_to_back(plan: FloorPlan, party: dict[int, LineString],
+                  owner: dict[int, int]) -> list[tuple[Wall, Wall, float, float]]:
+    """The stretches where party walls of two wings stand back to back: ``(wall a,
+    wall b, from, to)``, distances along ``a``, each pair once."""
+    out = []
+    for a in party:
+        wall_a = plan.wall(a)
+        line = wall_a.segment()
+        (ux, uz), (x0, z0) = wall_a.unit(), wall_a.start
+        for b in party:
+            wall_b = plan.wall(b)
+            if b <= a or owner[_inside(wall_a)] == owner[_inside(wall_b)]:
+                continue
+            if any(abs((x - x0) * uz - (z - z0) * ux) > _TOUCH for x, z in (wall_b.start, wall_b.end)):
+                continue  # not on a's line
+            lo, hi = sorted(line.project(Point(p)) for p in (wall_b.start, wall_b.end))
+            if hi - lo > _TOUCH:  # walls meeting end to end share no stretch
+                out.append((wall_a, wall_b, lo, hi))
+    return out
+
+
+def _inside(wall: Wall) -> int:
+    """The room of an outer wall."""
+    return wall.rooms[0] if wall.rooms[1] == OUTSIDE else wall.rooms[1]
+
+
+def _parts(wall: Wall, cuts: list[tuple[float, float, Wall]],
+           ids: Iterator[int]) -> list[tuple[float, float, Wall]]:
+    """``wall`` cut at its back-to-back stretches (``cuts``, in order along it): each
+    stretch with its merged wall, and each piece between them as an outer wall without
+    openings (the first keeps the wall's id), as ``(from, to, wall)``."""
+    parts: list[tuple[float, float, Wall]] = []
+    start = 0.0
+    for lo, hi, inner in [*cuts, (wall.length, wall.length, None)]:
+        if lo - start > _TOUCH:
+            first = not any(p.outer for _, _, p in parts)
+            parts.append((start, lo, replace(wall, id=wall.id if first else next(ids),
+                                             start=wall.point_at(start), end=wall.point_at(lo),
+                                             openings=())))
+        if inner is not None:
+            parts.append((lo, hi, inner))
+        start = hi
+    return parts
