@@ -123,6 +123,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         ``strict``, the rules leave a room unreachable.
     """
     from .roomtyping.room_graph import NoDoorsError
+    from .floorplan.treemap import most_rooms
     from .roomtyping.targets import redraw_count, target_areas
 
     if door_position not in DOOR_POSITIONS:
@@ -156,8 +157,9 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
         if recipe is None or attempt == MAX_REDRAWS:
             break
         free_area = _free_area(plan)
-        rooms = redraw_count(table, recipe.free_rooms, free_area, scale,
-                             attempt=attempt + 1, attempts=MAX_REDRAWS)
+        rooms = min(redraw_count(table, recipe.free_rooms, free_area, scale,
+                                 attempt=attempt + 1, attempts=MAX_REDRAWS),
+                    most_rooms(free_area, recipe.min_width, recipe.min_area))
         areas = target_areas(table, rooms, free_area, scale) if rooms > 0 else []
         if not areas or min(areas) <= 0:
             break  # fixed rooms fill the floor: no room the partition could draw again

@@ -17,6 +17,7 @@ the leaf, walking the leaves in the order they were made.
 
 from __future__ import annotations
 
+import heapq
 import math
 from collections.abc import Sequence
 from typing import Literal
@@ -29,7 +30,7 @@ from .bsp import (Cut, FixedFace, Partition, _best_chord, _candidates, _rectangl
 from .dcel import DCEL, EPS, Face
 from .tiling import tile_with_fixed_faces
 
-__all__ = ["partition_to_areas", "thesis_partition"]
+__all__ = ["most_rooms", "partition_to_areas", "thesis_partition"]
 
 Point = tuple[float, float]
 _AXES: dict[str, int] = {"x": 0, "z": 1}
@@ -76,10 +77,13 @@ def partition_to_areas(footprint: Sequence[Point], areas: Sequence[float],
     if not free:  # the fixed faces fill the floor (rooms laid out along a corridor)
         return Partition(dcel, (), len(areas) - pieces,
                          _shortfall(dcel, rules, len(fixed), circulation), fixed)
-    shares = _share([Polygon(dcel.points(f)) for f in free], list(areas), min_width, rng)
-    todo = list(zip(free, shares))
+    polygons = [Polygon(dcel.points(f)) for f in free]
+    shares = _share(polygons, list(areas), min_width, rng)
+    # more areas than a piece holds are merged at once, as failed cuts would one by one
+    fits = [most_rooms(polygon.area, min_width, min_area) for polygon in polygons]
+    merged = sum(max(0, len(wanted) - k) for wanted, k in zip(shares, fits))
+    todo = [(face, _fewer(wanted, k)) for face, wanted, k in zip(free, shares, fits)]
     cuts: list[Cut] = []
-    merged = 0
     while todo:
         face, wanted = todo.pop(0)
         if len(wanted) < 2:
@@ -147,6 +151,24 @@ def _strip_depth(piece: Polygon) -> float:
     return min(w, d) if max(w, d) >= 2 * min(w, d) else 0.0
 
 
+def most_rooms(area: float, min_width: float, min_area: float) -> int:
+    """The most rooms at least ``min_area`` big and ``min_width`` wide both ways that
+    ``area`` m² holds (at least one): more cannot be cut, and aiming at thousands costs
+    time quadratic in their number."""
+    return max(1, int(area / max(min_area, min_width ** 2, EPS)))
+
+
+def _fewer(areas: list[float], count: int) -> list[float]:
+    """``areas`` with the two smallest merged into one until ``count`` are left."""
+    if len(areas) <= count:
+        return areas
+    heap = list(areas)
+    heapq.heapify(heap)
+    while len(heap) > count:
+        heapq.heappush(heap, heapq.heappop(heap) + heapq.heappop(heap))
+    return sorted(heap)
+
+
 def _groupings(wanted: list[float], rng: np.random.Generator) -> list[tuple[list[float], list[float]]]:
     """Splits of the areas into two groups of similar total, best balanced first."""
     out = []
@@ -154,8 +176,14 @@ def _groupings(wanted: list[float], rng: np.random.Generator) -> list[tuple[list
         order = list(rng.permutation(wanted))
         a: list[float] = []
         b: list[float] = []
+        total_a = total_b = 0.0  # sum(a), sum(b): the same additions in the same order
         for w in order:
-            (a if sum(a) <= sum(b) else b).append(float(w))
+            if total_a <= total_b:
+                a.append(float(w))
+                total_a += a[-1]
+            else:
+                b.append(float(w))
+                total_b += b[-1]
         if a and b:
             out.append((a, b))
     out.sort(key=lambda g: abs(sum(g[0]) - sum(g[1])))

@@ -7,7 +7,7 @@ import pytest
 from shapely.geometry import Polygon
 
 from cga.operations.floorplan.bsp import FixedFace
-from cga.operations.floorplan.treemap import partition_to_areas, thesis_partition
+from cga.operations.floorplan.treemap import most_rooms, partition_to_areas, thesis_partition
 from dcel_checks import validate_dcel
 
 SQUARE = [(0, 0), (20, 0), (20, 20), (0, 20)]
@@ -68,3 +68,19 @@ def test_fixed_faces_that_fill_the_floor_leave_nothing_to_cut():
     validate_dcel(result.dcel, Polygon(SQUARE))
     assert len(result.dcel.faces) == 3 and not result.cuts
     assert result.shortfall == "the fixed faces leave no free floor to cut"
+
+
+def test_more_areas_than_the_floor_holds_are_merged_up_front():
+    """A grammar asking for 10,000 rooms (``split = 10000``) made the re-draws aim at
+    10,000 areas, and each leaf that could not be cut merged two of them and tried
+    again: minutes for one floor. No more rooms than the floor holds are aimed at, and
+    the shortfall is still reported."""
+    holds = most_rooms(400.0, 2.4, 4.0)
+    assert holds == int(400 / 2.4 ** 2) == 69
+    assert most_rooms(3.0, 2.4, 4.0) == 1 and most_rooms(400.0, 1.0, 8.0) == 50
+    result = partition_to_areas(SQUARE, [0.04] * 10_000, np.random.default_rng(0),
+                                min_width=2.4, min_area=4)
+    validate_dcel(result.dcel, Polygon(SQUARE))
+    assert 1 < len(result.dcel.faces) <= holds
+    assert result.shortfall is not None
+    assert all(Polygon(result.dcel.points(f)).area >= 4 - 1e-9 for f in result.dcel.faces)
