@@ -375,19 +375,12 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
     inside."""
     width = plan.settings.door_width
     candidates = []
-    for a in party:
-        wall_a = plan.wall(a)
-        room_a = plan.room(wall_a.rooms[0])
-        for b in party:
-            wall_b = plan.wall(b)
-            room_b = plan.room(wall_b.rooms[0])
-            if b <= a or owner[room_a.id] == owner[room_b.id]:
-                continue
-            if not (room_a.circulation and room_b.circulation):
-                continue
-            shared = wall_a.segment().intersection(wall_b.segment().buffer(_TOUCH))
-            if shared.length >= width + 2 * max(wall_a.thickness, wall_b.thickness):
-                candidates.append((shared.length, a, b, shared))
+    for wall_a, wall_b, _, _ in _back_to_back(plan, party, owner):
+        if not (plan.room(wall_a.rooms[0]).circulation and plan.room(wall_b.rooms[0]).circulation):
+            continue
+        shared = wall_a.segment().intersection(wall_b.segment().buffer(_TOUCH))
+        if shared.length >= width + 2 * max(wall_a.thickness, wall_b.thickness):
+            candidates.append((shared.length, wall_a.id, wall_b.id, shared))
     doors = list(plan.doors)
     furniture = list(plan.furniture)
     notes: list[Diagnostic] = []
@@ -453,10 +446,9 @@ def _merged_party_walls(plan: FloorPlan, party: dict[int, LineString],
     ids = itertools.count(max(w.id for w in plan.walls) + 1)
     cuts: dict[int, list[tuple[float, float, Wall]]] = {}  # party wall → (from, to, merged)
     merged = []
-    for wall_a, wall_b, t0, t1 in stretches:
-        left, right = _inside(wall_a), _inside(wall_b)
+    for wall_a, wall_b, t0, t1 in stretches:  # outer walls: (room, OUTSIDE), the room on the left
         wall = Wall(next(ids), wall_a.point_at(t0), wall_a.point_at(t1), outer=False,
-                    rooms=(left, right) if wall_a.rooms[1] == OUTSIDE else (right, left),
+                    rooms=(wall_a.rooms[0], wall_b.rooms[0]),
                     thickness=wall_a.thickness + wall_b.thickness)
         merged.append(wall)
         for party_wall in (wall_a, wall_b):
@@ -501,7 +493,8 @@ def _merged_party_walls(plan: FloorPlan, party: dict[int, LineString],
 def _back_to_back(plan: FloorPlan, party: dict[int, LineString],
                   owner: dict[int, int]) -> list[tuple[Wall, Wall, float, float]]:
     """The stretches where party walls of two wings stand back to back: ``(wall a,
-    wall b, from, to)``, distances along ``a``, each pair once."""
+    wall b, from, to)``, distances along ``a``, each pair once, in the order of
+    ``party``. Walls meeting end to end, or across, share none."""
     out = []
     for a in party:
         wall_a = plan.wall(a)
@@ -509,7 +502,7 @@ def _back_to_back(plan: FloorPlan, party: dict[int, LineString],
         (ux, uz), (x0, z0) = wall_a.unit(), wall_a.start
         for b in party:
             wall_b = plan.wall(b)
-            if b <= a or owner[_inside(wall_a)] == owner[_inside(wall_b)]:
+            if b <= a or owner[wall_a.rooms[0]] == owner[wall_b.rooms[0]]:
                 continue
             if any(abs((x - x0) * uz - (z - z0) * ux) > _TOUCH for x, z in (wall_b.start, wall_b.end)):
                 continue  # not on a's line
@@ -517,11 +510,6 @@ def _back_to_back(plan: FloorPlan, party: dict[int, LineString],
             if hi - lo > _TOUCH:  # walls meeting end to end share no stretch
                 out.append((wall_a, wall_b, lo, hi))
     return out
-
-
-def _inside(wall: Wall) -> int:
-    """The room of an outer wall."""
-    return wall.rooms[0] if wall.rooms[1] == OUTSIDE else wall.rooms[1]
 
 
 def _parts(wall: Wall, cuts: list[tuple[float, float, Wall]],
