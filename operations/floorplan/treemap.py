@@ -7,8 +7,9 @@ group's total, and each piece goes on with its group. A typing table asks for ar
 (a 100 m² living room and bedroom on a 400 m² floor of five rooms), and a random cut
 position rarely leaves two rooms that big; aiming the cuts does. Cuts keep the rules of
 :mod:`.bsp` (least width and area, offsets from corners, access to circulation); a leaf
-that cannot be cut has its two smallest areas merged and is tried again, and the
-partition reports the shortfall.
+that cannot be cut has its two smallest areas merged and is tried again (a piece given
+more areas than rooms of the least area and width could fill, :func:`most_rooms`, has
+the extra merged at once), and the partition reports the shortfall.
 
 :func:`thesis_partition` is Algorithm 8 of the thesis (createBSPTree, §5.1.2): every
 split halves a leaf exactly in the middle, across the axis other than the one that made
