@@ -9,7 +9,9 @@ explicit instead:
 * each worker has its own pipe; the parent hands out one seed at a time, pulled from
   the iterator only when a worker is idle;
 * the parent watches each build's clock; a build over ``time_limit`` has its worker
-  killed and is reported as a failure with that reason, and a fresh worker takes over;
+  killed and is reported as a failure with that reason, and a fresh worker takes over
+  (a result that came in past its time before the parent looked fails the same way,
+  its worker kept);
   a worker that dies (crash, out of memory) is reported the same way;
 * a worker ends quietly when its parent is gone: on Linux the kernel kills it
   (``PR_SET_PDEATHSIG``), elsewhere it notices the closed pipe and exits without output;
@@ -30,7 +32,7 @@ from dataclasses import dataclass
 from multiprocessing.connection import Connection, wait
 from typing import Any
 
-__all__ = ["run_pool"]
+__all__ = ["over_time_limit", "run_pool"]
 
 Build = Callable[[int], Any]
 """Builds one seed in a worker and returns a picklable result."""
@@ -184,28 +186,36 @@ def run_pool(seeds: Iterator[int], build: Build, failed: Failed, *, jobs: int,
             now = time.monotonic()
             for worker, seed in busy:
                 seconds = now - worker.started
-                reason = None
+                late = time_limit is not None and seconds >= time_limit
                 if worker.connection in ready:
                     try:
                         result = worker.connection.recv()
                     except (EOFError, OSError):
                         worker.process.join()
                         reason = _death(worker.process)
+                    else:  # in after its time, before this process looked: over it all the same
+                        worker.seed = None
+                        yield failed(seed, over_time_limit(seconds, time_limit), seconds) \
+                            if late else result
+                        continue
                 elif worker.process.sentinel in ready:
                     worker.process.join()
                     reason = _death(worker.process)
-                elif time_limit is not None and seconds >= time_limit:
-                    reason = (f"stopped after {seconds:.1f} s: over the time limit of "
-                              f"{time_limit:g} s per build (--time-limit)")
+                elif late:
+                    reason = over_time_limit(seconds, time_limit)
                 else:
                     continue
                 worker.seed = None
-                if reason is not None:
-                    pool.replace(worker)  # the worker is dead before its seed is reported
-                    result = failed(seed, reason, seconds)
-                yield result
+                pool.replace(worker)  # the worker is dead before its seed is reported
+                yield failed(seed, reason, seconds)
     finally:
         pool.close()
+
+
+def over_time_limit(seconds: float, limit: float | None) -> str:
+    """Why a build over ``--time-limit`` failed (both batch engines say it so)."""
+    return (f"stopped after {seconds:.1f} s: over the time limit of {limit:g} s per build "
+            "(--time-limit)")
 
 
 def _wait_ready(worker: _Worker) -> bool:

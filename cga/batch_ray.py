@@ -20,8 +20,9 @@ the batch ends. A caller that has already called :func:`ray.init` keeps its conn
   seed is recorded as failed with Ray's error, never lost.
 * **Time limit.** With ``time_limit`` only as many tasks as CPUs are in flight, so a
   task runs from the moment it is submitted; one over its time is cancelled with
-  ``force=True`` (Ray kills its worker) and recorded as failed with the reason.
-  A busy shared cluster delays starts, and the delay counts.
+  ``force=True`` (Ray kills its worker) and recorded as failed with the reason, and so
+  is one whose result came in past its time before this process looked (its folder is
+  replaced by the failure's). A busy shared cluster delays starts, and the delay counts.
 * **Files.** Workers write the seed folders into ``--out`` themselves and this process
   writes the manifest, so ``--out`` must be the same path on every node (shared
   storage, docs/batch.md), and cga (``pip install "cga[ray]"``) must be installed in
@@ -37,6 +38,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
+from .batch_pool import over_time_limit
 from .errors import UsageError
 
 __all__ = ["DEFAULT_RETRIES", "RayEngine", "ray_cluster"]
@@ -140,11 +142,13 @@ class RayEngine:
         cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
         return cpus if self.time_limit is not None else 2 * cpus
 
+    def _over_time(self, seconds: float) -> str:
+        return over_time_limit(seconds, self.time_limit)
+
     def _reason(self, error: BaseException, over_time: bool, seconds: float) -> str:
         """Why a seed failed whose task raised (after its retries) or was cancelled."""
         if over_time:
-            return (f"stopped after {seconds:.1f} s: over the time limit of "
-                    f"{self.time_limit:g} s per build (--time-limit)")
+            return self._over_time(seconds)
         return (f"the build's Ray task failed {self.retries + 1} "
                 f"time{'s' * (self.retries > 0)}: {_first_line(error)}")
 
@@ -194,11 +198,15 @@ class RayEngine:
                     continue
                 for ref in done:
                     seed, submitted = pending.pop(ref)
+                    seconds = now - submitted
                     try:
                         result = ray.get(ref)
                     except ray.exceptions.RayError as error:
-                        result = failed(seed, self._reason(error, ref in cancelled,
-                                                           now - submitted), now - submitted)
+                        result = failed(seed, self._reason(error, ref in cancelled, seconds),
+                                        seconds)
+                    else:  # in after its time, before this process looked: over it all the same
+                        if self.time_limit is not None and seconds >= self.time_limit:
+                            result = failed(seed, self._over_time(seconds), seconds)
                     cancelled.discard(ref)
                     yield result
         finally:
