@@ -565,9 +565,10 @@ def _run_locked(run: _Run, seeds: range,
     work = functools.partial(_build_one, run.grammar, out_dir=str(run.out),
                              build_options=run.options)
     try:
+        modules = _build_modules(run.options.get("physics", True),
+                                run.options.get("formats", ()))
         for record in run.engine.run(todo, work, functools.partial(_failure, run.out, inputs),
-                                     functools.partial(_warm_up, run.options.get("physics", True),
-                                                       str(run.out))):
+                                     functools.partial(_warm_up, modules, str(run.out))):
             _append_record(run.manifest, record)
             replaced |= record.seed in records
             records[record.seed] = record
@@ -585,20 +586,47 @@ def _run_locked(run: _Run, seeds: range,
                        skipped=len(built_before), seeds=len(seeds))
 
 
-def _warm_up(physics: bool, out_dir: str) -> None:
-    """Import what a build needs before a worker takes its first seed (a second or two
-    that would otherwise count against the first build's time limit), and check that
-    the worker sees the output folder (a Ray worker on another node may not); then set
-    the garbage collector for building (:mod:`cga.collector`)."""
+_BUILD_MODULES = (
+    "cga.pipeline", "cga.parser", "cga.rules", "cga.wings", "cga.appearance.dress",
+    "cga.building", "cga.furniture_models", "cga.interrupts", "cga.output_record",
+    "cga.meshing", "cga.meshing.solids", "cga.meshing.items", "cga.meshing.doors",
+    "cga.meshing.stairs",
+    "cga.operations.floorplan.assemble", "cga.operations.floorplan.bsp",
+    "cga.operations.floorplan.circulation", "cga.operations.floorplan.layout",
+    "cga.operations.floorplan.tiling", "cga.operations.floorplan.treemap",
+    "cga.operations.roomtyping.assign", "cga.operations.roomtyping.backtrack",
+    "cga.operations.roomtyping.room_graph", "cga.operations.roomtyping.targets",
+    "cga.operations.furniture.solver", "cga.operations.stairs.access", "numpy.random",
+)
+"""What builds import besides their operations and exporters: the operations import
+their internals on first use (so ``cga check`` stays light), which in a batch would be
+the first build's cost in every worker. A module missing here is only imported later."""
+
+
+def _build_modules(physics: bool, formats: Sequence[str]) -> list[str]:
+    """The modules a batch's builds import: :data:`_BUILD_MODULES`, the grammar
+    operations, the exporters of ``formats`` and, with ``physics``, the checks."""
+    from .export import EXPORTERS
+    from .registry import OperationRegistry
+
+    modules = [*_BUILD_MODULES, *OperationRegistry().modules(),
+               *(EXPORTERS.module(name) for name in formats if name in EXPORTERS)]
+    if physics:
+        modules += ["cga.checks.physics", "cga.checks.navigability", "cga.difficulty.exploration"]
+    return [name for name in modules if name is not None]
+
+
+def _warm_up(modules: Sequence[str], out_dir: str) -> None:
+    """Import ``modules`` (:func:`_build_modules`) before a worker takes its first seed
+    (a second or two that would otherwise count against the first build's time limit),
+    and check that the worker sees the output folder (a Ray worker on another node may
+    not); then set the garbage collector for building (:mod:`cga.collector`)."""
     import importlib
 
     from .collector import tune_for_building
 
     if not os.path.isdir(out_dir):
         raise UsageError(f"the output folder {out_dir} does not exist on {socket.gethostname()}")
-    modules = ["cga.pipeline", "cga.meshing", "cga.export", "cga.operations"]
-    if physics:
-        modules += ["cga.checks.physics", "cga.checks.navigability"]
     for name in modules:
         importlib.import_module(name)
     tune_for_building()

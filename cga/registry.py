@@ -53,6 +53,10 @@ class OperationRegistry(Mapping[str, Operation]):
     def register(self, operation: Operation) -> None:
         self._entries[operation.name] = operation
 
+    def modules(self) -> list[str]:
+        """The modules of the entries not imported yet (a batch imports them up front)."""
+        return [entry.split(":")[0] for entry in self._entries.values() if isinstance(entry, str)]
+
     def copy(self) -> "OperationRegistry":
         return OperationRegistry(self._entries)
 

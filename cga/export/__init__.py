@@ -45,6 +45,11 @@ class ExporterTable(MutableMapping[str, Exporter]):
             self._entries[name] = entry
         return entry
 
+    def module(self, name: str) -> str | None:
+        """The module of the writer of ``name`` if it is not imported yet, else None."""
+        entry = self._entries[name]
+        return entry.split(":")[0] if isinstance(entry, str) else None
+
     def __setitem__(self, name: str, writer: Exporter) -> None:
         self._entries[name] = writer
 

@@ -258,6 +258,28 @@ def test_a_read_only_output_folder_is_an_error(tmp_path, capsys):
     assert "cannot write into the output folder" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("physics", [False, True])
+def test_a_warmed_up_worker_builds_without_importing_cga_modules(tmp_path, physics):
+    """A worker imports what builds need before it takes a seed, so the first build's
+    time limit is not spent importing (the operations import their internals lazily)."""
+    import subprocess
+    import sys
+
+    demo = Path(__file__).resolve().parents[2] / "demos" / "house.grammar"
+    script = (
+        "import sys\n"
+        "from cga.batch import _build_modules, _build_one, _warm_up\n"
+        f"options = {{'physics': {physics}, 'formats': ['glb', 'json']}}\n"
+        f"_warm_up(_build_modules({physics}, options['formats']), {str(tmp_path)!r})\n"
+        "before = set(sys.modules)\n"
+        f"record = _build_one({str(demo)!r}, 0, {str(tmp_path)!r}, options)\n"
+        "assert record.error is None, record.error\n"
+        "print(sorted(m for m in set(sys.modules) - before if m.startswith('cga')))\n")
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "[]"
+
+
 # --- issue 18: engines ------------------------------------------------------------
 
 def test_the_local_engine_never_imports_ray(tmp_path):
