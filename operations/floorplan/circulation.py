@@ -156,10 +156,13 @@ def _straight(outline: Polygon, spec: CorridorSpec,
         start = min(max(start, lo + spec.min_depth), hi - spec.min_depth - spec.width)
     start = round(start, 6)
     end = round(start + spec.width, 6)
+    # a corridor flush with an outer wall ends on the wall's own coordinate: rounded, it
+    # could stop short of it by a sliver no room fits in (a 6.0234375 m deep floor)
+    start, end = (lo if abs(start - lo) <= 1e-6 else start), (hi if abs(end - hi) <= 1e-6 else end)
     strip = box(minx - 1, start, maxx + 1, end) if runs_x else box(start, minz - 1, end, maxz + 1)
     corridor = outline.intersection(strip)
     if not isinstance(corridor, Polygon) or not _is_rectangle(corridor) \
-            or abs(corridor.area - spec.width * (maxx - minx if runs_x else maxz - minz)) > 1e-6:
+            or abs(corridor.area - (end - start) * (maxx - minx if runs_x else maxz - minz)) > 1e-6:
         raise CirculationError("a straight corridor from wall to wall does not fit this "
                                "footprint; use corridor=\"centre_line\" for L, U or T footprints")
     band = (lambda a, b: box(minx - 1, a, maxx + 1, b)) if runs_x else (
