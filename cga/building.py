@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from .model import FloorPlan, Stair
+from .model import Diagnostic, FloorPlan, Stair
 from .shape import Shape
 
 __all__ = ["stack_storeys", "stack_plans"]
@@ -52,7 +52,23 @@ def stack_plans(plans: Sequence[FloorPlan]) -> list[FloorPlan]:
                 count += 1
                 stairs[i].append(stair)
                 stairs[j].append(stair)
-    return [p.with_changes(is_top=tops[i], stairs=tuple(stairs[i])) for i, p in enumerate(plans)]
+    return [p.with_changes(is_top=tops[i], stairs=tuple(stairs[i]),
+                           diagnostics=p.diagnostics + _cut_off(p, stairs[i], at_index))
+            for i, p in enumerate(plans)]
+
+
+def _cut_off(plan: FloorPlan, stairs: Sequence[Stair],
+             at_index: dict[int, list[int]]) -> tuple[Diagnostic, ...]:
+    """A warning when ``plan`` stands on a storey but no stair comes up to it
+    (``stair = "none"``, an operation that reserves no core): a robot on the ground
+    cannot reach its rooms."""
+    if plan.index == 0 or plan.index - 1 not in at_index \
+            or any(s.floors[1] == plan.index for s in stairs):
+        return ()
+    return (Diagnostic("warning", "stairs",
+                       f"no stair comes up to floor {plan.index} from floor {plan.index - 1} "
+                       f"(make_floor's stair = \"none\", or floors that reserve no stair core): "
+                       f"its rooms cannot be reached from the ground floor", floor=plan.index),)
 
 
 def stack_storeys(terminals: Sequence[Shape]) -> list[Shape]:

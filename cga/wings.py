@@ -16,9 +16,10 @@ plan per storey, so after the derivation the wings of a storey are joined into o
   out, with an info;
 * the wings are joined by a doorway through the party wall between two circulation
   rooms (halls, corridors) that face each other across it, the widest stretch they
-  share, so a robot entering by one front door reaches every wing; wings without such a
-  pair stay joined only through the outside (each has its own front door), which the
-  plan's diagnostics say;
+  share, so a robot entering by one front door, or coming up the stair, reaches every
+  wing; wings without such a pair are joined through other rooms, a private one last
+  (:func:`_join_circulation`), and only wings that share no wall long enough for a
+  doorway stay apart, which the plan's diagnostics say;
 * last, each stretch where two party walls stand back to back becomes one inner wall
   between the rooms on either side, as thick as both: every door, the doorways between
   wings too, then lies in the wall between the rooms it joins.
@@ -34,11 +35,13 @@ from collections.abc import Iterator, Sequence
 from dataclasses import replace
 
 import networkx as nx
+from networkx.utils import UnionFind
 import shapely
 from shapely.geometry import LineString, Point, Polygon
 
 from .errors import DerivationError
-from .model import DOOR_OPEN_ANGLE, OUTSIDE, Diagnostic, Door, FloorPlan, FurnitureItem, Opening, Wall
+from .model import (DOOR_OPEN_ANGLE, OUTSIDE, Diagnostic, Door, FloorPlan, FurnitureItem, Opening,
+                    Room, Wall)
 
 __all__ = ["join_wings"]
 
@@ -118,6 +121,9 @@ def _join(wings: list[FloorPlan]) -> FloorPlan:
     plan = _without_party_windows(plan, party)
     had_front = plan.front_door() is not None
     plan, joined = _party_front_doors(plan, party, owner)
+    front = plan.front_door()
+    if front is not None and plan.entry not in front.rooms:  # the first wing's door was left out
+        plan = plan.with_changes(entry=next(r for r in front.rooms if r != OUTSIDE))
     plan = _join_circulation(plan, party, owner, len(shifted), joined)
     if had_front and plan.front_door() is None:
         plan = _new_front_door(plan, party)
@@ -230,8 +236,10 @@ def _doorway(door: Door, rooms: tuple[int, int]) -> Door:
 def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
                        owner: dict[int, int]) -> tuple[FloorPlan, set[tuple[int, int]]]:
     """A wing's front door in a party wall would open into the neighbour's wall: it
-    becomes the doorway between the two wings (cut through both walls). Returns the plan
-    and the pairs of wings so joined."""
+    becomes the doorway between the two wings (cut through both walls), unless the room
+    behind is private (a bedroom must not be the way into a wing): then it is left out,
+    and :func:`_join_circulation` joins the wing. Returns the plan and the pairs of
+    wings so joined."""
     joined: set[tuple[int, int]] = set()
     walls = {w.id: w for w in plan.walls}
     doors, gone, notes = [], set(), []
@@ -245,6 +253,16 @@ def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
         inside = door.rooms[0] if door.rooms[1] == OUTSIDE else door.rooms[1]
         rooms = (inside, other.rooms[0])
         gone.add(door.id)
+        if plan.room(other.rooms[0]).private:  # never the way into a wing: joined elsewhere
+            walls[door.wall] = _without_opening_of(walls[door.wall], door)
+            if graph is not None and graph.has_edge(inside, OUTSIDE):
+                graph.remove_edge(inside, OUTSIDE)
+            notes.append(Diagnostic("info", "make_floor",
+                                    f"left out door {door.id}, a wing's front door in the wall "
+                                    f"between wings: it would open into "
+                                    f"{plan.room(other.rooms[0]).label}, a private room",
+                                    floor=plan.index))
+            continue
         if any(d.id in gone and set(d.rooms) == set(rooms)
                and Point(d.position).distance(Point(door.position)) < d.width for d in doors):
             # both wings put their front doors here, face to face: one doorway, whose
@@ -370,64 +388,135 @@ def _doorway_spot(plan: FloorPlan, shared: LineString, width: float,
 
 def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict[int, int],
                       count: int, joined: set[tuple[int, int]]) -> FloorPlan:
-    """Doorways through the party walls between facing circulation rooms, one per pair
-    of wings not yet joined (the longest shared stretch), so the wings are one building
-    inside."""
+    """Doorways through the party walls, so the wings are one building inside.
+
+    First one between facing circulation rooms (halls, corridors) for every pair of
+    wings not yet joined, on the longest stretch they share. Then, while some wings are
+    still apart, one doorway joining two of the parts, the best way left
+    (:func:`_doorway_rank`): a hall or corridor into a room that may be passed through,
+    two such rooms, last a private room, with a warning. Above the ground floor a wing
+    apart is cut off: its only way in would be the stair, which stands in one wing."""
     width = plan.settings.door_width
     candidates = []
     for wall_a, wall_b, _, _ in _back_to_back(plan, party, owner):
-        if not (plan.room(wall_a.rooms[0]).circulation and plan.room(wall_b.rooms[0]).circulation):
-            continue
         shared = wall_a.segment().intersection(wall_b.segment().buffer(_TOUCH))
         if shared.length >= width + 2 * max(wall_a.thickness, wall_b.thickness):
-            candidates.append((shared.length, wall_a.id, wall_b.id, shared))
-    doors = list(plan.doors)
-    furniture = list(plan.furniture)
-    notes: list[Diagnostic] = []
-    walls = {w.id: w for w in plan.walls}
-    graph = plan.room_graph.copy() if plan.room_graph is not None else None
-    for _, a, b, shared in sorted(candidates, key=lambda c: (-c[0], c[1], c[2])):
-        wall_a, wall_b = walls[a], walls[b]
-        first, second = sorted((owner[wall_a.rooms[0]], owner[wall_b.rooms[0]]))
-        pair = (first, second)
-        if pair in joined:
-            continue
-        spot = _doorway_spot(plan, shared, width, max(wall_a.thickness, wall_b.thickness))
+            rank = _doorway_rank(plan.room(wall_a.rooms[0]), plan.room(wall_b.rooms[0]))
+            candidates.append((rank, -shared.length, wall_a.id, wall_b.id, shared))
+    candidates.sort(key=lambda c: c[:4])
+    cutter = _DoorwayCutter(plan)
+    for rank, _, a, b, shared in candidates:
+        pair = cutter.wings(a, b, owner)
+        if rank == 0 and pair not in joined and cutter.cut(a, b, shared) is not None:
+            joined.add(pair)
+    parts = UnionFind(range(count))
+    for pair in joined:
+        parts.union(*pair)
+    while True:
+        apart = []
+        for rank, length, a, b, shared in candidates:
+            first, second = cutter.wings(a, b, owner)
+            if parts[first] != parts[second]:
+                spot = cutter.spot(a, b, shared)
+                if spot is not None:
+                    apart.append((rank, bool(spot[1]), length, a, b, shared))
+        if not apart:
+            break
+        rank, _, _, a, b, shared = min(apart, key=lambda c: c[:5])
+        door = cutter.cut(a, b, shared)
+        assert door is not None  # its spot was found above
+        parts.union(*cutter.wings(a, b, owner))
+        if rank == _PRIVATE:
+            private = [plan.room(r).label for r in door.rooms if plan.room(r).private]
+            cutter.notes.append(Diagnostic(
+                "warning", "make_floor",
+                f"the wings of floor {plan.index} are joined through {' and '.join(private)} "
+                f"(door {door.id}): no hall, corridor or room that may be passed through "
+                f"shares a wall with the other wing", floor=plan.index))
+    groups = len(list(parts.to_sets()))
+    if groups > 1:
+        cutter.notes.append(Diagnostic(
+            "info" if plan.index == 0 else "warning", "make_floor",
+            f"{count} wings on floor {plan.index} stay in {groups} parts inside: no wall "
+            f"they share is long enough for a doorway; "
+            + ("a wing apart is reached through its own front door" if plan.index == 0
+               else "the wings apart from the stair's cannot be reached"), floor=plan.index))
+    return cutter.plan()
+
+
+_PRIVATE = 3
+"""The rank of a doorway into a private room (:func:`_doorway_rank`)."""
+
+
+def _doorway_rank(a: Room, b: Room) -> int:
+    """How well a doorway between rooms ``a`` and ``b`` of two wings joins them, lower
+    is better: 0 two circulation rooms, 1 a circulation room and a room that may be
+    passed through, 2 two such rooms, :data:`_PRIVATE` a private room (a bedroom or a
+    bathroom would become the way into the other wing)."""
+    if a.private or b.private:
+        return _PRIVATE
+    return 2 - a.circulation - b.circulation
+
+
+class _DoorwayCutter:
+    """The doorways cut between wings so far: the plan's walls, doors, furniture, room
+    graph and notes as they change."""
+
+    def __init__(self, plan: FloorPlan):
+        self.base = plan
+        self.walls = {w.id: w for w in plan.walls}
+        self.doors = list(plan.doors)
+        self.furniture = list(plan.furniture)
+        self.notes: list[Diagnostic] = []
+        self.graph = plan.room_graph.copy() if plan.room_graph is not None else None
+
+    def wings(self, a: int, b: int, owner: dict[int, int]) -> tuple[int, int]:
+        """The wings of party walls ``a`` and ``b``, in order."""
+        first, second = sorted((owner[self.walls[a].rooms[0]], owner[self.walls[b].rooms[0]]))
+        return first, second
+
+    def spot(self, a: int, b: int, shared: LineString) -> tuple[Point, list[FurnitureItem]] | None:
+        """Where a doorway through walls ``a`` and ``b`` goes (:func:`_doorway_spot`)."""
+        thickness = max(self.walls[a].thickness, self.walls[b].thickness)
+        return _doorway_spot(self.base, shared, self.base.settings.door_width, thickness)
+
+    def cut(self, a: int, b: int, shared: LineString) -> Door | None:
+        """Cut a doorway through back-to-back walls ``a`` and ``b`` on ``shared`` (None:
+        the stretch is too short), leaving out the items in its way, with a warning."""
+        spot = self.spot(a, b, shared)
         if spot is None:
-            continue
-        centre, in_way = spot
-        joined.add(pair)
+            return None
+        plan, centre, in_way = self.base, spot[0], spot[1]
         if in_way:
             gone = {(i.room, i.name) for i in in_way}
             gone |= {(i.room, i.name) for i in plan.furniture if (i.room, i.parent) in gone}
-            furniture = [i for i in furniture if (i.room, i.name) not in gone]
-            notes.append(Diagnostic(
+            self.furniture = [i for i in self.furniture if (i.room, i.name) not in gone]
+            self.notes.append(Diagnostic(
                 "warning", "make_floor",
                 f"left out {', '.join(sorted(name for _, name in gone))}: in the way of the "
                 f"doorway joining the wings at ({centre.x:.2f}, {centre.y:.2f})",
                 floor=plan.index))
+        wall_a, wall_b = self.walls[a], self.walls[b]
         for wall in (wall_a, wall_b):
             along = wall.segment().project(centre)
-            walls[wall.id] = wall.with_opening(Opening("door", along, width,
-                                                       plan.settings.door_height))
-        door = _doorway(Door(id=len(doors), wall=a, rooms=(wall_a.rooms[0], wall_b.rooms[0]),
-                             position=(centre.x, centre.y), width=width,
-                             height=plan.settings.door_height, swing_room=wall_a.rooms[0]),
-                        (wall_a.rooms[0], wall_b.rooms[0]))
-        doors.append(door)
-        if graph is not None:
-            graph.add_edge(door.rooms[0], door.rooms[1], door=door.id, wall=a,
-                           reason="wings")
-    diagnostics = plan.diagnostics + tuple(notes)
-    if count > 1 and len(joined) < count - 1:
-        diagnostics += (Diagnostic(
-            "info", "make_floor",
-            f"{count} wings on floor {plan.index}, joined inside by {len(joined)} doorway(s): "
-            f"a wing without a hall or corridor facing another's across their common wall "
-            f"is reached through its own front door", floor=plan.index),)
-    return plan.with_changes(walls=tuple(walls[w.id] for w in plan.walls), doors=tuple(doors),
-                             furniture=tuple(furniture), room_graph=graph,
-                             diagnostics=diagnostics)
+            self.walls[wall.id] = wall.with_opening(Opening("door", along, plan.settings.door_width,
+                                                            plan.settings.door_height))
+        rooms = (wall_a.rooms[0], wall_b.rooms[0])
+        door = _doorway(Door(id=len(self.doors), wall=a, rooms=rooms,
+                             position=(centre.x, centre.y), width=plan.settings.door_width,
+                             height=plan.settings.door_height, swing_room=rooms[0]), rooms)
+        self.doors.append(door)
+        if self.graph is not None:
+            self.graph.add_edge(*rooms, door=door.id, wall=a, reason="wings")
+        return door
+
+    def plan(self) -> FloorPlan:
+        """The plan with the doorways cut."""
+        plan = self.base
+        return plan.with_changes(walls=tuple(self.walls[w.id] for w in plan.walls),
+                                 doors=tuple(self.doors), furniture=tuple(self.furniture),
+                                 room_graph=self.graph,
+                                 diagnostics=plan.diagnostics + tuple(self.notes))
 
 
 def _merged_party_walls(plan: FloorPlan, party: dict[int, LineString],

@@ -542,8 +542,8 @@ def _entry(plan: FloorPlan, table: RuleTable, typing: Typing, ids: Sequence[int]
             f"front door; room {entry} is its entry"), floor=plan.index, room=entry))
     else:
         notes.append(Diagnostic("info", _STAGE, (
-            f"upper floor: no front door; the stair arrives in room {entry} "
-            f"({plan.room(entry).type})"), floor=plan.index, room=entry))
+            f"upper floor without a stair core: no front door; room {entry} "
+            f"({plan.room(entry).type}) is its entry"), floor=plan.index, room=entry))
     return None, entry, notes
 
 

@@ -260,3 +260,22 @@ def test_a_straight_stair_through_three_storeys_is_refused(tmp_path):
     path.write_text(STRAIGHT.format(height=9), encoding="utf-8")
     with pytest.raises(DerivationError, match='straight stair joins two storeys'):
         build(path, formats=(), physics=False, quiet=True)
+
+
+def test_storeys_without_a_stair_are_reported_cut_off(tmp_path):
+    """``stair = "none"`` on a stack of storeys leaves the upper floor without a way up:
+    the build says so with a warning, and no message claims a stair that is not there."""
+    grammar = tmp_path / "no_stair.grammar"
+    grammar.write_text(
+        'units = 1;\nLot: rectangle(14, 10)\nRules:\nLot --> extrude(6) Body\n'
+        'Body --> repeated_split("Y", 3){Storey}\n'
+        'Storey --> make_floor(6, 0.2, 2>1.2>1.3, 0.9, 2.1, corridor = "spine", '
+        'corridor_width = 1.6, min_room_width = 2, min_room_area = 4, stair = "none") Floor\n'
+        'Floor --> case floor == 0 : type_rooms("house_types.csv") Typed\n'
+        '        | else : type_rooms("house_upper_types.csv") Typed\n', encoding="utf-8")
+    scene = build(grammar, seed=0, formats=(), physics=False, quiet=True)
+    assert not any(plan.stairs for plan in scene.floors)
+    messages = [(d.level, d.floor, d.message) for d in scene.all_diagnostics()]
+    assert [(level, floor) for level, floor, text in messages
+            if "no stair comes up to floor" in text] == [("warning", 1)]
+    assert not any("the stair arrives" in text for _, _, text in messages)

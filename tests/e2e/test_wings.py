@@ -141,3 +141,54 @@ def test_front_doors_face_to_face_make_one_doorway_with_one_opening(tmp_path):
                         and Point(d.position).distance(party) < 1e-6]
             assert doorways and len(cuts) == len(doorways), (seed, plan.index, cuts)
             assert cuts == sorted(round(d.position[1], 6) for d in doorways), (seed, cuts)
+
+
+FRONT_AND_BACK = """\
+units = 1;
+Lot: rectangle(14, 16)
+Rules:
+Lot --> extrude(6) Body
+Body --> repeated_split("Y", 3){Storey}
+Storey --> split("z"){ ~1 : Front | ~1 : Back }
+Front --> make_floor(5, 0.2, 2>1.2>1.3, 0.9, 2.1, corridor = "spine", corridor_width = 1.6, min_room_width = 2, min_room_area = 4) Floor
+Back --> make_floor(5, 0.2, 2>1.2>1.3, 0.9, 2.1, corridor = "spine", corridor_width = 1.6, min_room_width = 2, min_room_area = 4, stair = "none") Floor
+Floor --> case floor == 0 : type_rooms("house_types.csv") Typed
+        | else : type_rooms("house_upper_types.csv") Typed
+Typed --> add_furniture("furniture_house.csv", 0.2>1.2>1.3, 0.9, 2.1, 10, 20) Furnished
+"""
+
+
+def _building_graph(scene) -> nx.Graph:
+    """Rooms of every floor as ``(floor, room)``, joined by the doors and the stairs."""
+    graph = nx.Graph()
+    for plan in scene.floors:
+        graph.add_nodes_from((plan.index, r.id) for r in plan.rooms)
+        graph.add_edges_from(((plan.index, a), (plan.index, b)) for a, b in
+                             (d.rooms for d in plan.doors) if OUTSIDE not in (a, b))
+        for stair in plan.stairs:
+            graph.add_edge(*zip(stair.floors, stair.rooms))
+    return graph
+
+
+def test_wings_whose_corridors_do_not_face_are_joined_on_every_floor(tmp_path):
+    """Two wings front to back whose spines run parallel to the wall they share: no
+    corridor faces the other wing. Each floor used to stay two parts inside, joined only
+    through the ground floor's front doors, so the back wing's upper rooms could not be
+    reached at all. Now a doorway joins them on every floor, never through a bedroom or a
+    bathroom: every room of the building is reached from the front door through doors and
+    the stair, and a private room is the way into no other."""
+    grammar = tmp_path / "front_and_back.grammar"
+    grammar.write_text(FRONT_AND_BACK, encoding="utf-8")
+    for seed in range(3):
+        scene = build(grammar, seed=seed, formats=(), physics=False, quiet=True)
+        graph = _building_graph(scene)
+        front = scene.floors[0].front_door()
+        assert front is not None
+        entry = (0, next(r for r in front.rooms if r != OUTSIDE))
+        assert nx.node_connected_component(graph, entry) == set(graph.nodes), seed
+        for plan in scene.floors:
+            private = {(plan.index, r.id) for r in plan.rooms if r.private}
+            for room in private:
+                rest = graph.subgraph(set(graph.nodes) - {room})
+                reached = nx.node_connected_component(rest, entry) if entry != room else set()
+                assert reached | {room} == set(graph.nodes), (seed, room)
