@@ -394,12 +394,15 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
     wings not yet joined, on the longest stretch they share. Then, while some wings are
     still apart, one doorway joining two of the parts, the best way left
     (:func:`_doorway_rank`): a hall or corridor into a room that may be passed through,
-    two such rooms, last a private room, with a warning. Above the ground floor a wing
-    apart is cut off: its only way in would be the stair, which stands in one wing."""
+    two such rooms, and above the ground floor last a private room, with a warning: there
+    a wing apart is cut off, its only way in would be the stair, which stands in one
+    wing (on the ground floor each wing has its own front door)."""
     width = plan.settings.door_width
     candidates = []
     for wall_a, wall_b, _, _ in _back_to_back(plan, party, owner):
         shared = wall_a.segment().intersection(wall_b.segment().buffer(_TOUCH))
+        if plan.core_room in (wall_a.rooms[0], wall_b.rooms[0]):
+            shared = _along_landing(plan, shared, max(wall_a.thickness, wall_b.thickness))
         if shared.length >= width + 2 * max(wall_a.thickness, wall_b.thickness):
             rank = _doorway_rank(plan.room(wall_a.rooms[0]), plan.room(wall_b.rooms[0]))
             candidates.append((rank, -shared.length, wall_a.id, wall_b.id, shared))
@@ -416,6 +419,8 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
         apart = []
         for rank, length, a, b, shared in candidates:
             first, second = cutter.wings(a, b, owner)
+            if rank == _PRIVATE and plan.index == 0:
+                continue  # each wing has its own front door: not through a bedroom
             if parts[first] != parts[second]:
                 spot = cutter.spot(a, b, shared)
                 if spot is not None:
@@ -443,6 +448,22 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
                else "the wings apart from the stair's cannot be reached"), floor=plan.index))
     return cutter.plan()
 
+
+def _along_landing(plan: FloorPlan, shared: LineString, thickness: float) -> LineString:
+    """The part of ``shared``, a stretch of the stair core's wall, beside the floor
+    landing: the flights and the stairwell take the rest of the core's floor, so only a
+    doorway there leads anywhere (the top landing of a straight stair above the ground)."""
+    from cga.operations.stairs.layout import landing_rect
+
+    assert plan.core is not None
+    landing = landing_rect(plan.core, top=plan.index > 0, margin=thickness)
+    part = shared.intersection(landing.buffer(thickness + _TOUCH))
+    return part if isinstance(part, LineString) else LineString()
+
+
+_PASSAGE_WIDTH = 0.6
+"""Width (m) of the passage kept from a doorway between wings to the door of the room it
+opens into (the furniture's passage rule: a robot of 0.5 m and a margin)."""
 
 _PRIVATE = 3
 """The rank of a doorway into a private room (:func:`_doorway_rank`)."""
@@ -486,7 +507,7 @@ class _DoorwayCutter:
         spot = self.spot(a, b, shared)
         if spot is None:
             return None
-        plan, centre, in_way = self.base, spot[0], spot[1]
+        plan, centre, in_way = self.base, spot[0], [*spot[1], *self._on_the_way(a, b, spot[0])]
         if in_way:
             gone = {(i.room, i.name) for i in in_way}
             gone |= {(i.room, i.name) for i in plan.furniture if (i.room, i.parent) in gone}
@@ -509,6 +530,25 @@ class _DoorwayCutter:
         if self.graph is not None:
             self.graph.add_edge(*rooms, door=door.id, wall=a, reason="wings")
         return door
+
+    def _on_the_way(self, a: int, b: int, centre: Point) -> list[FurnitureItem]:
+        """The items of a room that is not circulation standing between the doorway at
+        ``centre`` and the room's nearest door: its furniture was placed to keep a
+        passage between its own doors, and through this doorway it becomes the way into
+        the other wing, so a straight passage (:data:`_PASSAGE_WIDTH`) to that door is
+        cleared."""
+        out = []
+        for room in (self.walls[a].rooms[0], self.walls[b].rooms[0]):
+            if self.base.room(room).circulation:
+                continue
+            doors = [d for d in self.doors if room in d.rooms]
+            if not doors:
+                continue
+            door = min(doors, key=lambda d: centre.distance(Point(d.position)))
+            way = LineString([centre, door.position]).buffer(_PASSAGE_WIDTH / 2)
+            out += [i for i in self.furniture if i.room == room and not i.is_detail
+                    and i.footprint().intersects(way)]
+        return out
 
     def plan(self) -> FloorPlan:
         """The plan with the doorways cut."""
