@@ -8,13 +8,16 @@ checks read a Scene and nothing upstream of it.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, TypeVar, cast
 
 from .model import Diagnostic, FloorPlan
 from .report import CheckReport
 from .shape import Shape
+
+_T = TypeVar("_T")
 
 if TYPE_CHECKING:  # pragma: no cover
     import trimesh
@@ -157,6 +160,8 @@ class Scene:
     georeference: "Georeference | None" = None
     _nodes: tuple[SceneNode, ...] | None = field(default=None, repr=False, compare=False)
     _lights: tuple["Light", ...] | None = field(default=None, repr=False, compare=False)
+    _shared: dict[Hashable, Any] = field(default_factory=dict, init=False, repr=False,
+                                         compare=False)
 
     @property
     def nodes(self) -> tuple[SceneNode, ...]:
@@ -167,6 +172,13 @@ class Scene:
 
             self._nodes = tuple(scene_nodes(self))
         return self._nodes
+
+    def shared(self, key: Hashable, make: Callable[[], _T]) -> _T:
+        """``make()``, made on first use under ``key`` and kept: what several exporters
+        derive from the finished build alike (the robot formats' world)."""
+        if key not in self._shared:
+            self._shared[key] = make()
+        return cast(_T, self._shared[key])
 
     @property
     def lights(self) -> tuple["Light", ...]:

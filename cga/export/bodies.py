@@ -12,6 +12,7 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +21,9 @@ from cga.fsutil import atomic_write
 
 from .obj import mtl_text, obj_text
 from .world import World
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cga.scene import Scene
 
 __all__ = ["MESH_DIR", "LinkFiles", "write_link_meshes", "numbers_text"]
 
@@ -61,8 +65,11 @@ def _write_once(folder: Path, stem: str, text: str) -> str:
     return f"{MESH_DIR}/{file_name}"
 
 
-def write_link_meshes(world: World, out_dir: Path, name: str) -> dict[str, LinkFiles]:
+def write_link_meshes(scene: Scene, world: World, out_dir: Path, name: str) -> dict[str, LinkFiles]:
     """Write the world's visual and collision OBJs and one MTL under ``meshes/``.
+
+    The OBJ texts are made once per build and world (:meth:`cga.scene.Scene.shared`):
+    URDF and SDF write the same files, and making the text is most of writing them.
 
     Returns
     -------
@@ -72,16 +79,25 @@ def write_link_meshes(world: World, out_dir: Path, name: str) -> dict[str, LinkF
     folder = Path(out_dir) / MESH_DIR
     mtl_name = f"{name}.mtl"
     atomic_write(folder / mtl_name, mtl_text(world.materials))
-    header = "cga mesh: ROS frame axes (z up), metres, relative to its link's frame"
+    _, texts = scene.shared(("link meshes", id(world.links), name),
+                            lambda: (world.links, _link_mesh_texts(world, mtl_name)))
     files: dict[str, LinkFiles] = {}
     for link in world.links:
         stem = f"{name}.{link.label}"
-        visual = (_write_once(folder, stem, obj_text(link.visual, mtl_file=mtl_name,
-                                                     header=header))
-                  if link.visual else None)
-        colliders = {c.name: _write_once(folder, f"{stem}.collision",
-                                         obj_text([c.mesh], mtl_file=None,
-                                                  header=header + "; collision"))
-                     for c in link.colliders if c.mesh is not None}
-        files[link.name] = LinkFiles(visual, f"{MESH_DIR}/{mtl_name}", colliders)
+        visual, colliders = texts[link.name]
+        files[link.name] = LinkFiles(
+            None if visual is None else _write_once(folder, stem, visual),
+            f"{MESH_DIR}/{mtl_name}",
+            {c: _write_once(folder, f"{stem}.collision", text) for c, text in colliders.items()})
     return files
+
+
+def _link_mesh_texts(world: World, mtl_name: str) -> dict[str, tuple[str | None, dict[str, str]]]:
+    """Link name → the OBJ text of its visual (None: none) and of each convex-mesh
+    collider by name."""
+    header = "cga mesh: ROS frame axes (z up), metres, relative to its link's frame"
+    return {link.name: (
+        obj_text(link.visual, mtl_file=mtl_name, header=header) if link.visual else None,
+        {c.name: obj_text([c.mesh], mtl_file=None, header=header + "; collision")
+         for c in link.colliders if c.mesh is not None})
+        for link in world.links}

@@ -147,7 +147,7 @@ def export_sdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: st
     """
     out = Path(out_dir)
     world = robot_world(scene, nodes)
-    files = write_link_meshes(world, out, name)
+    files = write_link_meshes(scene, world, out, name)
     written = atomic_write(out / f"{name}.world.sdf", world_as_sdf(world, files))
     return [written] + list(dict.fromkeys(
         out / f for link in world.links for f in files[link.name].paths()))

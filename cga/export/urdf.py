@@ -160,7 +160,7 @@ def export_urdf(scene: Scene, nodes: Sequence[SceneNode], out_dir: Path, name: s
     """
     out = Path(out_dir)
     world = robot_world(scene, nodes, items=items)
-    files = write_link_meshes(world, out, name)
+    files = write_link_meshes(scene, world, out, name)
     written = [atomic_write(out / f"{name}.urdf", world_as_urdf(world, files))]
     building = [link.name for link in world.links if link.role != "item"]
     relative = f"{URDF_DIR}/{name}.building.urdf"

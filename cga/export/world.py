@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
@@ -259,8 +259,8 @@ def _door_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, Mater
     return link, joint, used
 
 
-def _item_link(node: SceneNode, name: str, items: ItemJoints
-               ) -> tuple[Link, Joint, dict[str, Material]]:
+def _item_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, Material]]:
+    """An item's link on a floating joint (a static one's on a fixed joint)."""
     item = node.item
     turns = item.rotation % 4 if item is not None else 0
     label = identifier(item.model if item is not None else "item")
@@ -284,12 +284,14 @@ def _item_link(node: SceneNode, name: str, items: ItemJoints
     stacked = np.vstack(solids)
     link = Link(name, "item", label, node.path, frame_pose(frame), tuple(visual), colliders,
                 mass=mass, inertia=box_inertia(mass, stacked.max(axis=0) - stacked.min(axis=0)))
-    return link, Joint(f"{name}_joint", items, ROOT, name), used
+    return link, Joint(f"{name}_joint", "floating", ROOT, name), used
 
 
 def robot_world(scene: Scene, nodes: Sequence[SceneNode], *,
                 items: ItemJoints = "floating") -> World:
-    """The build as one robot world (see the module notes).
+    """The build as one robot world (see the module notes), made once per build and
+    nodes (:meth:`cga.scene.Scene.shared`): URDF, SDF, MJCF and USD are written from the
+    same world, whose collision hulls and centres of mass are most of each one's cost.
 
     Parameters
     ----------
@@ -312,6 +314,15 @@ def robot_world(scene: Scene, nodes: Sequence[SceneNode], *,
     ExportError
         There is no static structure, or a movable item has no positive ``mass`` extra.
     """
+    _, world = scene.shared(("robot_world", id(nodes)), lambda: (nodes, _robot_world(scene, nodes)))
+    if items == "floating":
+        return world
+    return replace(world, joints=tuple(replace(j, kind=items) if j.kind == "floating" else j
+                                       for j in world.joints))
+
+
+def _robot_world(scene: Scene, nodes: Sequence[SceneNode]) -> World:
+    """:func:`robot_world` with floating items, made afresh."""
     structure = [n for n in nodes if n.kind != "furniture" and len(n.mesh.faces)]
     if not structure:
         raise ExportError(f"robot export of '{scene.name}': the scene has no building "
@@ -333,7 +344,7 @@ def robot_world(scene: Scene, nodes: Sequence[SceneNode], *,
         if node.door is not None:
             link, joint, colours = _door_link(node, name)
         else:
-            link, joint, colours = _item_link(node, name, items)
+            link, joint, colours = _item_link(node, name)
         links.append(link)
         joints.append(joint)
         materials.update(colours)

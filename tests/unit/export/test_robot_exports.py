@@ -265,3 +265,33 @@ def test_usd_stage_up_axis_puts_the_building_where_the_scene_has_it(small_scene,
     if up == "Z":
         expected = np.array([_ros_box(trimesh.creation.box(bounds=expected))])[0]
     assert np.allclose([lo, hi], expected, atol=1e-4)
+
+
+def test_the_robot_formats_share_one_world_and_write_what_each_writes_alone(tmp_path,
+                                                                           small_scene):
+    """URDF, SDF, MJCF and USD written together make the robot world (collision hulls,
+    centres of mass) and the link OBJ texts once, and every file is the same as when
+    each format is written alone into a folder of its own."""
+    pytest.importorskip("pxr")
+    from unittest import mock
+
+    from dataclasses import replace
+
+    from cga.export import mjcf, usd, world
+
+    writers = {"urdf": export_urdf, "sdf": export_sdf, "mjcf": mjcf.export_mjcf,
+               "usd": usd.export_usd}
+    built, nodes = small_scene
+    for fmt, writer in writers.items():  # a copy of the build shares nothing made for it
+        writer(replace(built), nodes, tmp_path / "alone" / fmt, "house")
+    scene = replace(built)
+    with mock.patch.object(world, "_robot_world", wraps=world._robot_world) as made:
+        for writer in writers.values():
+            writer(scene, nodes, tmp_path / "together", "house")
+    assert made.call_count == 1
+    together = {p.relative_to(tmp_path / "together"): p.read_bytes()
+                for p in (tmp_path / "together").rglob("*") if p.is_file()}
+    for fmt in writers:
+        folder = tmp_path / "alone" / fmt
+        for path in (p for p in folder.rglob("*") if p.is_file()):
+            assert together[path.relative_to(folder)] == path.read_bytes(), (fmt, path)
