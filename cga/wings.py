@@ -73,6 +73,17 @@ def join_wings(plans: Sequence[FloorPlan]) -> list[FloorPlan]:
 
 def _join(wings: list[FloorPlan]) -> FloorPlan:
     index = wings[0].index
+    stacked = [(a, b) for a, b in itertools.combinations(wings, 2)
+               if a.elevation != b.elevation and a.footprint.intersection(b.footprint).area > _TOUCH]
+    if stacked:
+        low, high = stacked[0]
+        raise DerivationError(
+            f"two storeys, one above the other, are both floor {index} "
+            f"({low.elevation:g}–{low.elevation + low.height:g} m and "
+            f"{high.elevation:g}–{high.elevation + high.height:g} m): a storey's number comes "
+            f"from repeated_split(\"y\", ...), and a piece of split(\"y\") keeps its "
+            f"parent's (0 outside any repeated_split)",
+            hint='cut every storey of the building with one repeated_split("y", height)')
     if len({(w.elevation, w.height) for w in wings}) > 1:
         raise DerivationError(
             f"the {len(wings)} make_floor pieces of floor {index} stand at different heights "

@@ -193,3 +193,20 @@ def test_wings_whose_corridors_do_not_face_are_joined_on_every_floor(tmp_path):
                 rest = graph.subgraph(set(graph.nodes) - {(plan.index, room.id)})
                 if not nx.is_connected(rest):
                     assert plan.index > 0 and plan.index in warned, (seed, plan.index, room.id)
+
+
+def test_two_storeys_with_one_number_are_refused_with_the_reason(tmp_path, capsys):
+    """A tall ground floor cut off with split("y") is floor 0, and so is the first storey
+    of the repeated_split above it: the error says why, not that wings stand at different
+    heights (none were made)."""
+    grammar = tmp_path / "tall_ground.grammar"
+    grammar.write_text(
+        'Lot: rectangle(16, 11)\nRules:\nLot --> extrude(10) Mass\n'
+        'Mass --> split("y"){ 4 : Ground | ~1 : Uppers }\n'
+        'Uppers --> repeated_split("Y", 3){ Storey }\n'
+        'Ground --> make_floor(5, 0.2, 2>1.2>1.3, 0.9, 2.1) Floor\n'
+        'Storey --> make_floor(5, 0.2, 2>1.2>1.3, 0.9, 2.1) Floor\n', encoding="utf-8")
+    assert main(["build", str(grammar), "--no-physics", "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "two storeys, one above the other, are both floor 0 (0–4 m and 4–7 m)" in err
+    assert "wings" not in err and "Traceback" not in err
