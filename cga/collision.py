@@ -129,28 +129,48 @@ def _sheet_prisms(mesh: "trimesh.Trimesh", half: float = 0.005) -> list[np.ndarr
 
 def _piece(vertices: np.ndarray) -> ConvexPiece | None:
     """A convex piece from points, recognised as an upright box when it is one; None for
-    a sliver without volume (rounding left over from cutting)."""
-    import trimesh
-    from shapely.geometry import MultiPoint
+    a sliver without volume (rounding left over from cutting).
 
+    Points that are the eight corners of an axis-aligned box (most pieces of a building:
+    :func:`cga.checks._solids.convex_pieces` cuts walls and slabs into such boxes) are
+    their own hull, made without Qhull (most of a robot export's cost), and their box is
+    read off the corners exactly (the rotated rectangle through them turned such a box
+    by rounding noise, up to 1e-12 rad)."""
+    import trimesh
+
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    if ((vertices == lo) | (vertices == hi)).all() and len(np.unique(vertices, axis=0)) == 8:
+        if not float(np.prod(hi - lo)) > _MIN_VOLUME:
+            return None
+        corners = trimesh.creation.box(bounds=np.array([lo, hi]))
+        return ConvexPiece(np.asarray(corners.vertices, dtype=float), np.asarray(corners.faces),
+                           ((lo + hi) / 2, hi - lo, 0.0))
     hull = trimesh.convex.convex_hull(vertices)
-    if not hull.volume > _MIN_VOLUME:
+    volume = float(hull.volume)
+    if not volume > _MIN_VOLUME:
         return None
     points = np.asarray(hull.vertices, dtype=float)
+    return ConvexPiece(points, np.asarray(hull.faces), _upright_box(points, volume))
+
+
+def _upright_box(points: np.ndarray, volume: float) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """``(centre, extents, yaw)`` of the convex solid with corners ``points`` and
+    ``volume`` when it is an upright box (any turn about +y), else None."""
+    from shapely.geometry import MultiPoint
+
     y0, y1 = float(points[:, 1].min()), float(points[:, 1].max())
     rect = MultiPoint(points[:, [0, 2]]).minimum_rotated_rectangle
-    box = None
-    if rect.geom_type == "Polygon" and hull.volume >= rect.area * (y1 - y0) * (1 - _BOX_TOLERANCE):
-        corners = np.asarray(rect.exterior.coords)[:4]
-        edge_a, edge_b = corners[1] - corners[0], corners[2] - corners[1]
-        yaw = float(np.arctan2(-edge_a[1], edge_a[0]))
-        extents = np.array([np.linalg.norm(edge_a), y1 - y0, np.linalg.norm(edge_b)])
-        # the same box turned by a quarter turn: keep yaw in [−45°, 45°), so an
-        # axis-aligned piece gets yaw 0
-        turns = int(np.floor((yaw + np.pi / 4) / (np.pi / 2)))
-        yaw -= turns * np.pi / 2
-        if turns % 2:
-            extents = extents[[2, 1, 0]]
-        centre = np.array([*corners.mean(axis=0), (y0 + y1) / 2])[[0, 2, 1]]
-        box = (centre, extents, float(yaw))
-    return ConvexPiece(points, np.asarray(hull.faces), box)
+    if not (rect.geom_type == "Polygon" and volume >= rect.area * (y1 - y0) * (1 - _BOX_TOLERANCE)):
+        return None
+    corners = np.asarray(rect.exterior.coords)[:4]
+    edge_a, edge_b = corners[1] - corners[0], corners[2] - corners[1]
+    yaw = float(np.arctan2(-edge_a[1], edge_a[0]))
+    extents = np.array([np.linalg.norm(edge_a), y1 - y0, np.linalg.norm(edge_b)])
+    # the same box turned by a quarter turn: keep yaw in [−45°, 45°), so an
+    # axis-aligned piece gets yaw 0
+    turns = int(np.floor((yaw + np.pi / 4) / (np.pi / 2)))
+    yaw -= turns * np.pi / 2
+    if turns % 2:
+        extents = extents[[2, 1, 0]]
+    centre = np.array([*corners.mean(axis=0), (y0 + y1) / 2])[[0, 2, 1]]
+    return centre, extents, float(yaw)

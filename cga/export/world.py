@@ -140,18 +140,36 @@ def box_inertia(mass: float, extents: Sequence[float]) -> tuple[float, float, fl
             mass * (a * a + b * b) / 12.0)
 
 
-def centre_of_mass(parts: "Sequence[MeshArrays | trimesh.Trimesh]") -> np.ndarray:
+def centre_of_mass(parts: "Sequence[MeshArrays | trimesh.Trimesh]",
+                   closed: Sequence[bool] | None = None) -> np.ndarray:
     """World centre of mass of solid convex parts of uniform density (the volume-weighted
-    mean of their centroids); the bounding-box centre if they enclose no volume."""
+    mean of their centroids); the bounding-box centre if they enclose no volume.
+
+    ``closed`` says of each part whether it encloses a volume (trimesh's ``is_volume``;
+    a part that does not stands for its convex hull), where that is known already: an
+    item's parts are its model's turned and scaled, which keeps it
+    (:attr:`ModelGeometry.closed_parts`), and testing it is most of the cost."""
     import trimesh
 
-    meshes = [trimesh.Trimesh(vertices=p.vertices, faces=p.faces, process=False) for p in parts]
-    solids = [m if m.is_volume else m.convex_hull for m in meshes]
-    volumes = np.array([max(float(s.volume), 0.0) for s in solids])
-    if volumes.sum() <= 0.0:
-        bounds = np.array([m.bounds for m in meshes])
+    if closed is None:
+        closed = [trimesh.Trimesh(vertices=p.vertices, faces=p.faces, process=False).is_volume
+                  for p in parts]
+    volumes, centres = [], []
+    for part, is_closed in zip(parts, closed):
+        if is_closed:  # what Trimesh.mass_properties computes, without the Trimesh
+            mass = trimesh.triangles.mass_properties(
+                np.asarray(part.vertices, dtype=np.float64)[np.asarray(part.faces)],
+                skip_inertia=True)
+        else:
+            mass = trimesh.Trimesh(vertices=part.vertices, faces=part.faces,
+                                   process=False).convex_hull.mass_properties
+        volumes.append(max(float(mass.volume), 0.0))
+        centres.append(mass.center_mass)
+    if sum(volumes) <= 0.0:
+        bounds = np.array([trimesh.Trimesh(vertices=p.vertices, faces=p.faces,
+                                           process=False).bounds for p in parts])
         return (bounds[:, 0].min(axis=0) + bounds[:, 1].max(axis=0)) / 2
-    return np.average([s.center_mass for s in solids], axis=0, weights=volumes)
+    return np.average(centres, axis=0, weights=np.array(volumes))
 
 
 def identifier(text: str) -> str:
@@ -266,7 +284,7 @@ def _item_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, Mater
     label = identifier(item.model if item is not None else "item")
     parts: list[MeshArrays | trimesh.Trimesh] = [
         *(collision_parts(node) if not node.static else node.parts or (node.mesh,))]
-    frame = _Frame(pose_to_ros(centre_of_mass(parts), 90.0 * turns))
+    frame = _Frame(pose_to_ros(centre_of_mass(parts, _closed_parts(node, parts)), 90.0 * turns))
     visual, used = frame.visual(node, label)
     material = visual[0].material if visual else "collision"
     if node.static:  # details and rugs: seen, not touched (the checks ignore them too)
@@ -285,6 +303,20 @@ def _item_link(node: SceneNode, name: str) -> tuple[Link, Joint, dict[str, Mater
     link = Link(name, "item", label, node.path, frame_pose(frame), tuple(visual), colliders,
                 mass=mass, inertia=box_inertia(mass, stacked.max(axis=0) - stacked.min(axis=0)))
     return link, Joint(f"{name}_joint", "floating", ROOT, name), used
+
+
+def _closed_parts(node: SceneNode, parts: Sequence[object]) -> list[bool] | None:
+    """Which of ``parts`` enclose a volume, when they are the node's model's parts
+    (:func:`centre_of_mass`); None when that is not known."""
+    item = node.item
+    if item is None or item.geometry is None or not node.parts:
+        return None
+    kept = [closed for part, closed in zip(node.parts, item.geometry.closed_parts)
+            if len(part.faces)]
+    if len(kept) != len(parts) or any(a is not b for a, b in
+                                       zip((p for p in node.parts if len(p.faces)), parts)):
+        return None
+    return kept
 
 
 def robot_world(scene: Scene, nodes: Sequence[SceneNode], *,

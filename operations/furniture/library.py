@@ -172,6 +172,12 @@ class ModelGeometry:
                      for v, f, c in zip(self.vertices, self.faces, self.colors))
 
     @cached_property
+    def closed_parts(self) -> tuple[bool, ...]:
+        """Whether each part encloses a volume (trimesh's ``is_volume``): a turn and a
+        scale by positive factors keep it, so it holds for every posed copy."""
+        return tuple(bool(part.is_volume) for part in self.parts)
+
+    @cached_property
     def mesh(self) -> trimesh.Trimesh:
         import trimesh
 
