@@ -195,8 +195,9 @@ def read_geojson(path: str | Path, *, sandbox: "Sandbox | None" = None) -> LotIn
 
     The coordinates are read in the file's CRS (:func:`cga.georeference.source_frame`),
     projected to a local transverse Mercator, turned so plan ``x`` follows the outline's
-    main direction, squared when every edge is within :data:`~cga.rectify.SNAP_TOLERANCE_DEG`
-    of a right angle, and moved so the bounding box starts at the plan origin. Holes
+    main direction, squared (every edge within :data:`~cga.rectify.SNAP_TOLERANCE_DEG` of a
+    right angle put on its axis, others kept) and moved so the bounding box starts at the
+    plan origin. Holes
     (courtyards) are filled. Each of these steps is a diagnostic.
 
     ``sandbox``, when given, holds the folders the file may lie in (:mod:`cga.sandbox`).
@@ -271,7 +272,15 @@ def _georeferenced(document: Any, polygon: Polygon, where: str) -> LotInput:
         notes.append(f"turned the plan so x runs along the outline's main direction, "
                      f"{math.degrees(turn):.2f}° counter-clockwise from east")
     squared = square(turned)
-    if squared is not None:
+    if squared is not None and squared.oblique:
+        notes.append(f"warning: the outline is not rectilinear: {squared.oblique} of its "
+                     f"{squared.edges} walls (the furthest {squared.oblique_deg:.1f}° off a "
+                     f"right angle, more than the {SNAP_TOLERANCE_DEG:g}° squaring tolerance) "
+                     f"are kept as drawn, the others squared (at most "
+                     f"{squared.worst_deg:.2f}° off; corners moved by at most "
+                     f"{squared.moved:.3f} m); make_floor cuts rooms parallel to the plan axes")
+        turned = squared.polygon
+    elif squared is not None:
         if squared.worst_deg > 1e-6:
             notes.append(f"squared the outline: its {squared.edges} walls were at most "
                          f"{squared.worst_deg:.2f}° off a right angle (tolerance "

@@ -31,13 +31,17 @@ _MIN_EDGE = 1e-3
 
 @dataclass(frozen=True)
 class Squared:
-    """An outline snapped to the axes: ``worst_deg`` is the largest angle an edge was
-    off its axis, ``moved`` the largest distance (m) between old and new outline."""
+    """An outline snapped to the axes: ``worst_deg`` is the largest angle a snapped edge
+    was off its axis, ``moved`` the largest distance (m) between old and new outline,
+    ``edges`` its walls; ``oblique`` walls were too far off an axis and kept, the
+    furthest ``oblique_deg`` off."""
 
     polygon: Polygon
     worst_deg: float
     moved: float
     edges: int
+    oblique: int = 0
+    oblique_deg: float = 0.0
 
 
 def _ring(polygon: Polygon) -> np.ndarray:
@@ -76,43 +80,66 @@ def edge_deviation(polygon: Polygon) -> float:
 
 
 def square(polygon: Polygon, tolerance_deg: float = SNAP_TOLERANCE_DEG) -> Squared | None:
-    """``polygon`` (already turned to its main direction) with every edge on an axis,
-    or None when an edge is more than ``tolerance_deg`` off its axis or the squared
-    outline would not be a simple polygon. Holes are not kept (a lot has none)."""
+    """``polygon`` (already turned to its main direction) with every edge within
+    ``tolerance_deg`` of an axis on that axis; edges further off (a bay, a chamfered
+    corner: ``oblique``) are kept, their ends moved onto the neighbouring walls. None
+    when no edge is near an axis or the squared outline would not be a simple polygon.
+    Holes are not kept (a lot has none)."""
     ring = _ring(polygon)
-    if len(ring) < 4:
-        return None
-    worst = edge_deviation(Polygon(ring))
-    if worst > tolerance_deg:
+    if len(ring) < 3:
         return None
     edges = _edges(ring)
-    horizontal = np.abs(edges[:, 0]) >= np.abs(edges[:, 1])
-    # start at an edge whose predecessor runs along the other axis, so runs do not wrap
-    starts = np.flatnonzero(horizontal != np.roll(horizontal, 1))
-    if len(starts) < 4 or len(starts) % 2:
+    angles = np.degrees(np.arctan2(edges[:, 1], edges[:, 0]))
+    deviation = np.abs((angles + 45.0) % 90.0 - 45.0)
+    # per edge: 0 along x, 1 along z, 2 oblique
+    kind = np.where(deviation > tolerance_deg, 2, (np.abs(edges[:, 0]) < np.abs(edges[:, 1])) * 1)
+    if (kind == 2).all():
         return None
-    order = np.roll(np.arange(len(ring)), -int(starts[0]))
-    kinds: list[bool] = []  # per run of edges along one axis: horizontal or not
-    sums: list[list[float]] = []  # per run: Σ coordinate · length, Σ length
-    for index in order:
-        along = bool(horizontal[index])
-        length = float(np.hypot(*edges[index]))
-        mid = ring[index] + edges[index] / 2
-        coordinate = float(mid[1] if along else mid[0])
-        if kinds and kinds[-1] == along:
-            sums[-1][0] += coordinate * length
-            sums[-1][1] += length
+    # start at an edge that begins a run (its predecessor is of another kind, or oblique)
+    starts = np.flatnonzero((kind != np.roll(kind, 1)) | (kind == 2))
+    if not len(starts):
+        return None
+    runs: list[list[int]] = []  # edge indices, in order, one run of edges along one axis
+    for index in np.roll(np.arange(len(ring)), -int(starts[0])):
+        if runs and kind[index] != 2 and kind[runs[-1][-1]] == kind[index]:
+            runs[-1].append(int(index))
         else:
-            kinds.append(along)
-            sums.append([coordinate * length, length])
-    lines = [total / weight for total, weight in sums]
+            runs.append([int(index)])
+    lines = []
+    for run in runs:
+        axis = kind[run[0]]
+        if axis == 2:
+            lines.append(math.nan)
+            continue
+        lengths = [float(np.hypot(*edges[i])) for i in run]
+        mids = [float((ring[i] + edges[i] / 2)[1 - axis]) for i in run]
+        lines.append(sum(m * w for m, w in zip(mids, lengths)) / sum(lengths))
     corners = []
-    for k, (along, line) in enumerate(zip(kinds, lines)):
-        following = lines[(k + 1) % len(lines)]
-        corners.append((following, line) if along else (line, following))
-    # corner k ends run k; the outline starts with the corner that ends the last run
-    squared = Polygon([corners[-1], *corners[:-1]])
+    for k, run in enumerate(runs):  # the corner where run k - 1 ends and run k begins
+        point = ring[run[0]]
+        before, after = (k - 1) % len(runs), k
+        corners.append(_junction(point, kind[runs[before][0]], lines[before],
+                                 kind[run[0]], lines[after]))
+    squared = Polygon(corners)
     if not squared.is_valid or squared.area <= 0:
         return None
     moved = float(squared.exterior.hausdorff_distance(Polygon(ring).exterior))
-    return Squared(polygon=squared, worst_deg=worst, moved=moved, edges=len(lines))
+    snapped = deviation[kind != 2]
+    return Squared(polygon=squared, worst_deg=float(snapped.max()), moved=moved,
+                   edges=len(runs), oblique=int((kind == 2).sum()),
+                   oblique_deg=float(deviation.max()))
+
+
+def _junction(point: np.ndarray, kind_in: int, line_in: float, kind_out: int,
+              line_out: float) -> tuple[float, float]:
+    """Where a wall of ``kind_in`` (0 along x at z = ``line_in``, 1 along z at x =
+    ``line_in``, 2 oblique) meets the next of ``kind_out``: two axis walls meet where
+    their lines cross; an oblique wall keeps the outline's corner ``point``, moved onto
+    the axis wall beside it."""
+    x, z = float(point[0]), float(point[1])
+    for kind, line in ((kind_in, line_in), (kind_out, line_out)):
+        if kind == 0:
+            z = line
+        elif kind == 1:
+            x = line
+    return x, z

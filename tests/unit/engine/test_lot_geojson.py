@@ -147,6 +147,31 @@ def test_an_oblique_wall_is_kept_and_reported(tmp_path):
     assert lot.polygon.area == pytest.approx(12 * 10 - 8, rel=0.001)
 
 
+def test_the_walls_beside_an_oblique_one_are_squared(tmp_path):
+    """A traced outline (corners off by centimetres, turned 8°) with a chamfered corner:
+    the chamfer stays oblique, every other wall lies exactly on an axis (where a stair
+    core can stand: such a lot failed with "no place for a U stair core"), and the
+    warning says both."""
+    chamfered = [(0, 0), (16, 0), (16, 8), (13, 11), (0, 11)]
+    jitter = [(0, 0), (0.05, 0.1), (-0.08, 0.02), (0.04, -0.06), (0.1, 0.05)]
+    lot = read_lot(str(write(tmp_path, {"type": "Polygon", "coordinates": [
+        lon_lat(chamfered, turn_deg=8.0, jitter=jitter)]})))
+    corners = np.asarray(lot.polygon.exterior.coords)
+    edges = np.diff(corners, axis=0)
+    on_axis = (np.abs(edges) < 1e-9).any(axis=1)
+    assert on_axis.sum() == 4 and (~on_axis).sum() == 1
+    assert lot.polygon.area == pytest.approx(16 * 11 - 4.5, rel=0.02)
+    text = notes(lot)
+    assert "not rectilinear: 1 of its 5 walls" in text and "the others squared" in text
+    grammar = tmp_path / "two_storeys.grammar"
+    grammar.write_text('Rules:\nLot --> extrude(6) Body\nBody --> repeated_split("Y", 3){Storey}\n'
+                       'Storey --> make_floor(6, 0.2, 2>1.2>1.3, 0.9, 2.1, min_room_width = 2, '
+                       'min_room_area = 4) Floor\n', encoding="utf-8")
+    scene = build(grammar, lot=str(tmp_path / "lot.geojson"), formats=(), physics=False,
+                  quiet=True)
+    assert len(scene.floors[0].stairs) == 1
+
+
 def test_holes_are_filled_and_reported(tmp_path):
     outer = lon_lat([(0, 0), (20, 0), (20, 20), (0, 20)])
     court = lon_lat([(6, 6), (6, 14), (14, 14), (14, 6)])
