@@ -385,7 +385,11 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     ids = tuple(room.id for room in free)
     wants_front_door = table.outside_rule is not None and plan.index == 0
     with_outer_wall = {w.rooms[0] for w in plan.walls if w.outer} | {w.rooms[1] for w in plan.walls if w.outer}
-    outer = frozenset(i for i, room in enumerate(ids) if room in with_outer_wall)
+    windowed = {w.room for w in plan.windows}
+    # needsWindow: a room with a window, where the floor has windows at all; a typing
+    # that cannot give every such type one falls back to rooms with an outer wall
+    sights = [frozenset(i for i, room in enumerate(ids) if room in windowed)] if windowed else []
+    sights.append(frozenset(i for i, room in enumerate(ids) if room in with_outer_wall))
     circulation = table.circulation_rule
     pinned = {i: circulation.type if circulation is not None else CIRCULATION_TYPE
               for i, room in enumerate(free) if room.circulation}
@@ -394,7 +398,8 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     # the landing.
     landing = None if table.has_access else _landing_neighbours(plan, sites)
     choices = _entrance_choices(ids, sites, wants_front_door, landing)
-    for attempt, entrances in enumerate(choices, start=1):
+    attempts = [(outer, entrances) for outer in dict.fromkeys(sights) for entrances in choices]
+    for attempt, (outer, entrances) in enumerate(attempts, start=1):
         rooms = RoomSet(areas=tuple(room.area for room in free), adjacency=sites.adjacency(ids),
                         entrances=entrances, ids=ids, outer=outer)
         try:
@@ -402,11 +407,18 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
                                   pinned=pinned)
             break
         except NoSolutionError:
-            if attempt == len(choices):
+            if attempt == len(attempts):
                 raise
-            # next: the same rules without asking for the stair landing
+            # next: the same rules without asking for the stair landing, then with
+            # rooms that have only an outer wall counted as looking out
     notes = [Diagnostic(n.level, _STAGE, n.message, floor=plan.index, room=n.room)
              for n in typing.notes]
+    notes += [Diagnostic("warning", _STAGE, (
+        f"room {room} ({kind}) needs a window (needsWindow), but none fits its outer wall: "
+        f"no typing of this layout gave that type only rooms with a window"),
+        floor=plan.index, room=room)
+        for room, kind in zip(ids, typing.types) if windowed and room not in windowed
+        and (rule := table.rule_for(kind)) is not None and rule.needs_window]
     types = {**dict(zip(ids, typing.types)), **fixed}
     typed = plan.with_changes(rooms=tuple(
         r if r.id in fixed else _typed_room(r, types[r.id], table, table.area_scale(units))

@@ -18,7 +18,8 @@ each optional, so the thesis' tables work unchanged):
   private rooms, which is the default for types named like bedrooms and bathrooms
   (:func:`private_by_name`), true for the rest; a private room is the way into another
   room only when that room lists its type in ``enteredFrom`` (an en-suite bathroom);
-* ``needsWindow``: the room must have an outer wall (default false);
+* ``needsWindow``: the room must have a window (an outer wall on a floor without any;
+  default false);
 * ``circulation``: the type is a hall, corridor or landing (default false): it takes the
   corridors ``make_floor`` carves and is drawn as circulation.
 

@@ -4,7 +4,8 @@ It reads the tables with the csv module and the floors' rooms and doors only (ne
 the typing code or :mod:`cga.quality`), and reports what an architect would object to:
 private rooms that are the only way into another room (unless that room lists the
 private type in ``enteredFrom``: en-suite), offices and meeting rooms without a door
-onto circulation, a front door not into circulation, rooms whose type no rule defines,
+onto circulation, a room whose type needs a window without one (unless a warning names
+it), a front door not into circulation, rooms whose type no rule defines,
 two doors whose leaves sweep into each other. A table without a ``passThrough`` value
 for a type makes it private when its name is a bedroom's or bathroom's (docs/room_typing.md).
 The one type no table defines is ``Stair``, the stair core ``make_floor`` reserves on
@@ -37,6 +38,7 @@ class Table:
     private: frozenset[str]
     circulation: frozenset[str]
     entered_from: dict[str, frozenset[str]]
+    needs_window: frozenset[str] = frozenset()
 
 
 def read_table(path: Path) -> Table:
@@ -50,7 +52,8 @@ def read_table(path: Path) -> Table:
         private=frozenset(r["Type"].strip() for r in rows if _private(r)),
         circulation=frozenset(r["Type"].strip() for r in rows if flag(r, "circulation")),
         entered_from={r["Type"].strip(): frozenset(t.strip() for t in (r.get("enteredFrom") or "").split(",") if t.strip())
-                      for r in rows})
+                      for r in rows},
+        needs_window=frozenset(r["Type"].strip() for r in rows if flag(r, "needsWindow")))
 
 
 def _private(row) -> bool:
@@ -124,6 +127,12 @@ def floor_problems(plan, table: Table) -> list[str]:
         if r.type in ("Office", "Meetingroom") and not any(
                 types[n] in table.circulation | {STAIR} for n in edges[r.id]):
             problems.append(f"{r.type} {r.id} does not open onto circulation")
+    lit = {w.room for w in plan.windows}
+    for r in plan.rooms:
+        if r.type in table.needs_window and lit and r.id not in lit and not any(
+                d.level == "warning" and d.room == r.id and "needs a window" in d.message
+                for d in plan.diagnostics):
+            problems.append(f"{r.type} {r.id} needs a window and has none, unannounced")
     sweeps = [(d.id, _sweep(plan, d)) for d in plan.doors]
     for i, (a, sweep_a) in enumerate(sweeps):
         for b, sweep_b in sweeps[i + 1:]:
