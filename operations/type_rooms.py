@@ -29,7 +29,7 @@ largest.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -132,6 +132,7 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     door_error: NoSolutionError | None = None  # the last layout typed but left without doors
     last_resort: FloorPlan | None = None  # typed, a room no rule takes behind a private one
     fallback: FloorPlan | None = None  # typed, but with rooms no rule takes
+    unlit: FloorPlan | None = None  # typed, but a room that needs a window has none
     drawn = [plan]  # the floor and its re-draws
     scale = table.area_scale(units)
     for attempt in range(MAX_REDRAWS + 1):
@@ -147,12 +148,19 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
                     door_state=door_state, redrawn=(attempt, first_error))
         else:
             leftover = [r.id for r in typed.rooms if r.type == DEFAULT_TYPE]
-            if not (leftover and table.has_access):
+            dark = _dark(typed)
+            if not (leftover and table.has_access) and not dark:
                 return _redrawn(typed, attempt, first_error, table, units)
-            fallback = fallback or _redrawn(typed, attempt, first_error, table, units)
-            first_error = first_error or NoSolutionError(
-                f"room{'s' if len(leftover) > 1 else ''} {', '.join(map(str, leftover))} fit no "
-                "rule of the table")
+            if not (leftover and table.has_access):  # typed, a room without its window
+                unlit = unlit or _redrawn(typed, attempt, first_error, table, units)
+                first_error = first_error or NoSolutionError(
+                    f"room{'s' if len(dark) > 1 else ''} {', '.join(map(str, dark))} need "
+                    "a window but have none")
+            else:
+                fallback = fallback or _redrawn(typed, attempt, first_error, table, units)
+                first_error = first_error or NoSolutionError(
+                    f"room{'s' if len(leftover) > 1 else ''} {', '.join(map(str, leftover))} "
+                    "fit no rule of the table")
         recipe = plan.layout
         if recipe is None or attempt == MAX_REDRAWS:
             break
@@ -165,6 +173,8 @@ def type_plan(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
             break  # fixed rooms fill the floor: no room the partition could draw again
         plan = recipe.redraw(attempt + 1, areas).with_changes(diagnostics=plan.diagnostics)
         drawn.append(plan)
+    if unlit is not None:
+        return unlit
     if not strict:
         relaxed = _with_sizes_relaxed(drawn, table, rng, units=units,
                                       door_position=door_position, door_state=door_state)
@@ -311,6 +321,16 @@ def _redrawn(typed: FloorPlan, attempt: int, first_error: NoSolutionError | None
     return typed.with_changes(diagnostics=typed.diagnostics + tuple(notes)) if notes else typed
 
 
+_NO_WINDOW = "needs a window (needsWindow)"
+"""What the warning on a room typed to need a window without one says (:func:`_dark`)."""
+
+
+def _dark(plan: FloorPlan) -> list[int]:
+    """The rooms typed on this floor that need a window and have none (their warnings)."""
+    return [d.room for d in plan.diagnostics
+            if d.stage == _STAGE and d.room is not None and _NO_WINDOW in d.message]
+
+
 def _free_area(plan: FloorPlan) -> float:
     return sum(r.area for r in plan.rooms if not r.circulation)
 
@@ -386,10 +406,6 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     wants_front_door = table.outside_rule is not None and plan.index == 0
     with_outer_wall = {w.rooms[0] for w in plan.walls if w.outer} | {w.rooms[1] for w in plan.walls if w.outer}
     windowed = {w.room for w in plan.windows}
-    # needsWindow: a room with a window, where the floor has windows at all; a typing
-    # that cannot give every such type one falls back to rooms with an outer wall
-    sights = [frozenset(i for i, room in enumerate(ids) if room in windowed)] if windowed else []
-    sights.append(frozenset(i for i, room in enumerate(ids) if room in with_outer_wall))
     circulation = table.circulation_rule
     pinned = {i: circulation.type if circulation is not None else CIRCULATION_TYPE
               for i, room in enumerate(free) if room.circulation}
@@ -398,23 +414,29 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     # the landing.
     landing = None if table.has_access else _landing_neighbours(plan, sites)
     choices = _entrance_choices(ids, sites, wants_front_door, landing)
-    attempts = [(outer, entrances) for outer in dict.fromkeys(sights) for entrances in choices]
-    for attempt, (outer, entrances) in enumerate(attempts, start=1):
-        rooms = RoomSet(areas=tuple(room.area for room in free), adjacency=sites.adjacency(ids),
-                        entrances=entrances, ids=ids, outer=outer)
-        try:
-            typing = assign_types(rooms, table, rng, area_scale=table.area_scale(units),
-                                  pinned=pinned)
-            break
-        except NoSolutionError:
-            if attempt == len(attempts):
-                raise
-            # next: the same rules without asking for the stair landing, then with
-            # rooms that have only an outer wall counted as looking out
+
+    def typed_with(outer: frozenset[int]) -> Typing:
+        """A typing where types that need a window take rooms of ``outer``."""
+        for attempt, entrances in enumerate(choices, start=1):
+            rooms = RoomSet(areas=tuple(room.area for room in free),
+                            adjacency=sites.adjacency(ids), entrances=entrances, ids=ids,
+                            outer=outer)
+            try:
+                return assign_types(rooms, table, rng, area_scale=table.area_scale(units),
+                                    pinned=pinned)
+            except NoSolutionError:
+                if attempt == len(choices):
+                    raise
+                # next: the same rules without asking for the stair landing
+        raise AssertionError("unreachable: the last choice raises")
+
+    walled = frozenset(i for i, room in enumerate(ids) if room in with_outer_wall)
+    lit = frozenset(i for i, room in enumerate(ids) if room in windowed)
+    typing = _looking_out(typed_with, lit, walled, rng) if windowed else typed_with(walled)
     notes = [Diagnostic(n.level, _STAGE, n.message, floor=plan.index, room=n.room)
              for n in typing.notes]
     notes += [Diagnostic("warning", _STAGE, (
-        f"room {room} ({kind}) needs a window (needsWindow), but none fits its outer wall: "
+        f"room {room} ({kind}) {_NO_WINDOW}, but none fits its outer wall: "
         f"no typing of this layout gave that type only rooms with a window"),
         floor=plan.index, room=room)
         for room, kind in zip(ids, typing.types) if windowed and room not in windowed
@@ -473,6 +495,37 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
                                 windows=windows, doors=tuple(doors),
                                 diagnostics=plan.diagnostics + tuple(notes))
     return result.with_changes(room_graph=room_graph(result, doors), entry=entry)
+
+
+def _looking_out(typed_with: Callable[[frozenset[int]], Typing], lit: frozenset[int],
+                 walled: frozenset[int], rng: np.random.Generator) -> Typing:
+    """The typing that gives types needing a window rooms with a window (``lit``) where
+    one exists that leaves no more rooms untyped than a typing that takes any room with
+    an outer wall (``walled``: a window may not fit a short one); else that one, drawn
+    from the stream as it was before the first try (the typing of a floor whose rooms
+    all have windows, or that falls back, is the one it always was)."""
+    if lit == walled:
+        return typed_with(walled)
+    before = rng.bit_generator.state
+    try:
+        typing: Typing | None = typed_with(lit)
+    except NoSolutionError:
+        typing = None
+    if typing is not None and DEFAULT_TYPE not in typing.types:
+        return typing
+    after = rng.bit_generator.state
+    rng.bit_generator.state = before
+    try:
+        fallback = typed_with(walled)
+    except NoSolutionError:
+        if typing is None:
+            raise
+        rng.bit_generator.state = after
+        return typing
+    if typing is None or fallback.types.count(DEFAULT_TYPE) < typing.types.count(DEFAULT_TYPE):
+        return fallback
+    rng.bit_generator.state = after
+    return typing
 
 
 def _add_front_door(doors: list[Door], sweeps: list[Polygon], walls: dict[int, Wall],
