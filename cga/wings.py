@@ -31,7 +31,7 @@ opens into the neighbour's wall, and the navigability report names that door.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator, Sequence
+from collections.abc import Collection, Iterator, Sequence
 from dataclasses import replace
 
 import networkx as nx
@@ -131,7 +131,9 @@ def _join(wings: list[FloorPlan]) -> FloorPlan:
     party = _party_walls(plan, owner, shifted)
     plan = _without_party_windows(plan, party)
     had_front = plan.front_door() is not None
-    plan, joined = _party_front_doors(plan, party, owner)
+    plan, joined, dropped = _party_front_doors(plan, party, owner)
+    for lost in sorted(dropped):
+        plan = _new_front_door(plan, party, {room for room, k in owner.items() if k == lost})
     front = plan.front_door()
     if front is not None and plan.entry not in front.rooms:  # the first wing's door was left out
         plan = plan.with_changes(entry=next(r for r in front.rooms if r != OUTSIDE))
@@ -244,14 +246,15 @@ def _doorway(door: Door, rooms: tuple[int, int]) -> Door:
                    angle=DOOR_OPEN_ANGLE, leaf=False, swing_room=rooms[0])
 
 
-def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
-                       owner: dict[int, int]) -> tuple[FloorPlan, set[tuple[int, int]]]:
+def _party_front_doors(plan: FloorPlan, party: dict[int, LineString], owner: dict[int, int]
+                       ) -> tuple[FloorPlan, set[tuple[int, int]], set[int]]:
     """A wing's front door in a party wall would open into the neighbour's wall: it
     becomes the doorway between the two wings (cut through both walls), unless the room
     behind is private (a bedroom must not be the way into a wing): then it is left out,
-    and :func:`_join_circulation` joins the wing. Returns the plan and the pairs of
-    wings so joined."""
+    for a front door elsewhere in the wing (:func:`_new_front_door`). Returns the plan,
+    the pairs of wings so joined and the wings whose front door was left out."""
     joined: set[tuple[int, int]] = set()
+    dropped: set[int] = set()
     walls = {w.id: w for w in plan.walls}
     doors, gone, notes = [], set(), []
     graph = plan.room_graph.copy() if plan.room_graph is not None else None
@@ -264,10 +267,11 @@ def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
         inside = door.rooms[0] if door.rooms[1] == OUTSIDE else door.rooms[1]
         rooms = (inside, other.rooms[0])
         gone.add(door.id)
+        if graph is not None and graph.has_edge(inside, OUTSIDE):
+            graph.remove_edge(inside, OUTSIDE)
         if plan.room(other.rooms[0]).private:  # never the way into a wing: joined elsewhere
             walls[door.wall] = _without_opening_of(walls[door.wall], door)
-            if graph is not None and graph.has_edge(inside, OUTSIDE):
-                graph.remove_edge(inside, OUTSIDE)
+            dropped.add(owner[inside])
             notes.append(Diagnostic("info", "make_floor",
                                     f"left out door {door.id}, a wing's front door in the wall "
                                     f"between wings: it would open into "
@@ -286,20 +290,18 @@ def _party_front_doors(plan: FloorPlan, party: dict[int, LineString],
         first, second = sorted((owner[rooms[0]], owner[rooms[1]]))
         joined.add((first, second))
         if graph is not None:
-            if graph.has_edge(inside, OUTSIDE):
-                graph.remove_edge(inside, OUTSIDE)
             graph.add_edge(*rooms, door=door.id, wall=door.wall, reason="wings")
         notes.append(Diagnostic("info", "make_floor",
                                 f"door {door.id}, a wing's front door in the wall between "
                                 f"wings, is the doorway from {plan.room(inside).label} to "
                                 f"{plan.room(other.rooms[0]).label}", floor=plan.index))
     if not gone:
-        return plan, joined
+        return plan, joined, dropped
     plan = plan.with_changes(
         walls=tuple(walls[w.id] for w in plan.walls), doors=tuple(doors), room_graph=graph,
         furniture=tuple(i for i in plan.furniture if not (i.is_detail and i.door in gone)),
         diagnostics=plan.diagnostics + tuple(notes))
-    return _renumbered_doors(plan), joined
+    return _renumbered_doors(plan), joined, dropped
 
 
 def _without_opening_of(wall: Wall, door: Door) -> Wall:
@@ -329,10 +331,13 @@ def _renumbered_doors(plan: FloorPlan) -> FloorPlan:
                              furniture=tuple(items), room_graph=graph)
 
 
-def _new_front_door(plan: FloorPlan, party: dict[int, LineString]) -> FloorPlan:
-    """The storey's front door, when every wing had its own in a party wall: an open
-    doorway in the longest stretch of a circulation room's outer wall (not a party wall)
-    that no window, door or furniture item takes."""
+def _new_front_door(plan: FloorPlan, party: dict[int, LineString],
+                    rooms: Collection[int] | None = None) -> FloorPlan:
+    """A front door, when every wing had its own in a party wall (``rooms`` None) or when
+    the wing of ``rooms`` lost its own (it faced a private room): an open doorway in the
+    longest stretch of a circulation room's outer wall (not a party wall) that no
+    window, door or furniture item takes. It is the floor's entry when the floor had no
+    other front door."""
     from cga.operations.roomtyping.doors import door_spans, free_intervals, make_door
 
     width = plan.settings.door_width
@@ -340,7 +345,8 @@ def _new_front_door(plan: FloorPlan, party: dict[int, LineString]) -> FloorPlan:
     taken = shapely.union_all([i.footprint() for i in plan.furniture if not i.is_detail])
     best = None
     for wall in plan.walls:
-        if not wall.outer or wall.id in party or not plan.room(wall.rooms[0]).circulation:
+        if not wall.outer or wall.id in party or not plan.room(wall.rooms[0]).circulation \
+                or (rooms is not None and wall.rooms[0] not in rooms):
             continue
         for lo, hi in free_intervals(wall, spans[wall.id]):
             centre = (lo + hi) / 2
@@ -349,7 +355,10 @@ def _new_front_door(plan: FloorPlan, party: dict[int, LineString]) -> FloorPlan:
             if hi - lo >= width and not approach.intersects(taken) \
                     and (best is None or hi - lo > best[0]):
                 best = (hi - lo, wall, centre, wall.rooms[0])
+    whose = "the floor's" if rooms is None else "the wing's"
     if best is None:
+        if rooms is not None:  # the wing is joined to the others inside instead
+            return plan
         return plan.with_changes(diagnostics=plan.diagnostics + (Diagnostic(
             "warning", "make_floor", "the wings' front doors were all in the walls between "
             "them, and no hall or corridor has a free outer wall for another: the floor has "
@@ -364,10 +373,11 @@ def _new_front_door(plan: FloorPlan, party: dict[int, LineString]) -> FloorPlan:
         graph.add_edge(room, OUTSIDE, door=door.id, wall=wall.id, reason="front")
     x, z = door.position
     note = Diagnostic("info", "make_floor", f"the wings' front doors were in the walls between "
-                      f"them; the floor's front door is door {door.id}, an open doorway at "
+                      f"them; {whose} front door is door {door.id}, an open doorway at "
                       f"({x:.2f}, {z:.2f}) into {plan.room(room).label}", floor=plan.index)
+    entry = room if plan.front_door() is None else plan.entry
     return plan.with_changes(walls=walls, doors=plan.doors + (door,), room_graph=graph,
-                             entry=room, diagnostics=plan.diagnostics + (note,))
+                             entry=entry, diagnostics=plan.diagnostics + (note,))
 
 
 def _doorway_spot(plan: FloorPlan, shared: LineString, width: float,
@@ -405,9 +415,9 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
     wings not yet joined, on the longest stretch they share. Then, while some wings are
     still apart, one doorway joining two of the parts, the best way left
     (:func:`_doorway_rank`): a hall or corridor into a room that may be passed through,
-    two such rooms, and above the ground floor last a private room, with a warning: there
-    a wing apart is cut off, its only way in would be the stair, which stands in one
-    wing (on the ground floor each wing has its own front door)."""
+    two such rooms, and last a private room, with a warning, where one of the parts has
+    no front door (above the ground floor none has: a wing apart is cut off, its only
+    way in would be the stair, which stands in one wing)."""
     width = plan.settings.door_width
     candidates = []
     for wall_a, wall_b, _, _ in _back_to_back(plan, party, owner):
@@ -426,12 +436,17 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
     parts = UnionFind(range(count))
     for pair in joined:
         parts.union(*pair)
+    fronted = {owner[r] for d in plan.doors if d.is_front for r in d.rooms if r != OUTSIDE}
+
+    def entered(wing: int) -> bool:
+        """Whether the part ``wing`` is in has a front door of its own."""
+        return any(parts[k] == parts[wing] for k in fronted)
     while True:
         apart = []
         for rank, length, a, b, shared in candidates:
             first, second = cutter.wings(a, b, owner)
-            if rank == _PRIVATE and plan.index == 0:
-                continue  # each wing has its own front door: not through a bedroom
+            if rank >= _PRIVATE and entered(first) and entered(second):
+                continue  # both parts have a front door: not through a bedroom
             if parts[first] != parts[second]:
                 spot = cutter.spot(a, b, shared)
                 if spot is not None:
@@ -442,7 +457,7 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
         door = cutter.cut(a, b, shared)
         assert door is not None  # its spot was found above
         parts.union(*cutter.wings(a, b, owner))
-        if rank == _PRIVATE:
+        if rank >= _PRIVATE:
             private = [plan.room(r).label for r in door.rooms if plan.room(r).private]
             cutter.notes.append(Diagnostic(
                 "warning", "make_floor",
@@ -451,11 +466,14 @@ def _join_circulation(plan: FloorPlan, party: dict[int, LineString], owner: dict
                 f"shares a wall with the other wing", floor=plan.index))
     groups = len(list(parts.to_sets()))
     if groups > 1:
+        only_private = any(parts[w] != parts[v] for w, v in
+                           (cutter.wings(a, b, owner) for _, _, a, b, _ in candidates))
+        why = ("only private rooms line the walls they share" if only_private
+               else "no wall they share is long enough for a doorway")
         cutter.notes.append(Diagnostic(
             "info" if plan.index == 0 else "warning", "make_floor",
-            f"{count} wings on floor {plan.index} stay in {groups} parts inside: no wall "
-            f"they share is long enough for a doorway; "
-            + ("a wing apart is reached through its own front door" if plan.index == 0
+            f"{count} wings on floor {plan.index} stay in {groups} parts inside: {why}; "
+            + ("each part is entered by a front door of its own" if plan.index == 0
                else "the wings apart from the stair's cannot be reached"), floor=plan.index))
     return cutter.plan()
 
@@ -477,17 +495,21 @@ _PASSAGE_WIDTH = 0.6
 opens into (the furniture's passage rule: a robot of 0.5 m and a margin)."""
 
 _PRIVATE = 3
-"""The rank of a doorway into a private room (:func:`_doorway_rank`)."""
+"""The least rank of a doorway into a private room (:func:`_doorway_rank`)."""
 
 
 def _doorway_rank(a: Room, b: Room) -> int:
     """How well a doorway between rooms ``a`` and ``b`` of two wings joins them, lower
     is better: 0 two circulation rooms, 1 a circulation room and a room that may be
-    passed through, 2 two such rooms, :data:`_PRIVATE` a private room (a bedroom or a
-    bathroom would become the way into the other wing)."""
-    if a.private or b.private:
-        return _PRIVATE
-    return 2 - a.circulation - b.circulation
+    passed through, 2 two such rooms; from :data:`_PRIVATE` on a private room (a
+    bedroom or a bathroom) becomes the way into the other wing: beside a hall or
+    corridor, beside another room, and last two private rooms."""
+    private = a.private + b.private
+    if not private:
+        return 2 - a.circulation - b.circulation
+    if private == 2:
+        return _PRIVATE + 2
+    return _PRIVATE + (not (a.circulation or b.circulation))
 
 
 class _DoorwayCutter:

@@ -37,7 +37,7 @@ from shapely.geometry.base import BaseGeometry
 from shapely.ops import polylabel, unary_union
 
 from cga.fsutil import atomic_write
-from cga.model import OUTSIDE, FloorPlan, FurnitureItem, Room, Wall
+from cga.model import OUTSIDE, Door, FloorPlan, FurnitureItem, Room, Wall
 from cga.scene import Scene, SceneNode
 
 from .drawing import (Arc, Area, Canvas, Drawing, Point, Polyline, Style, Text, render_png,
@@ -134,10 +134,10 @@ def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
     extent = max(max_x - min_x, max_z - min_z, 1e-9)
     scale = min(_MAX_PX_PER_M, max(_MIN_PX_PER_M, _TARGET_PLAN_PX / extent),
                 MAX_PLAN_PX / extent)
-    entrance = _entrance_marker(plan, scale)
-    if entrance is not None:  # make room for the marker outside the walls
+    entrances = [_entrance_marker(door, plan, scale) for door in plan.doors if door.is_front]
+    if entrances:  # make room for the markers outside the walls
         min_x, min_z, max_x, max_z = unary_union(
-            [plan.footprint, entrance.arrow, entrance.label_box]).bounds
+            [plan.footprint, *(part for e in entrances for part in (e.arrow, e.label_box))]).bounds
     paper = _Paper(min_x, min_z, scale, _MARGIN, _HEADER + _MARGIN * 0.5)
     plan_w, plan_h = (max_x - min_x) * scale, (max_z - min_z) * scale
     column_x = _MARGIN + plan_w + _MARGIN
@@ -152,7 +152,7 @@ def plan_drawing(plan: FloorPlan, *, title: str, subtitle: str = "") -> Drawing:
     _draw_walls(drawing, paper, plan)
     _draw_windows(drawing, paper, plan)
     _draw_doors(drawing, paper, plan)
-    if entrance is not None:
+    for entrance in entrances:  # one per front door: wings may have their own
         _draw_entrance(drawing, paper, entrance)
     _draw_room_labels(drawing, paper, plan, [footprint for _, footprint in footprints])
     drawing.add("annotation", Text((_MARGIN, 36.0), title, 20, _INK, "start", bold=True,
@@ -433,10 +433,7 @@ class _Entrance:
     label_box: Polygon
 
 
-def _entrance_marker(plan: FloorPlan, scale: float) -> _Entrance | None:
-    door = plan.front_door()
-    if door is None:
-        return None
+def _entrance_marker(door: Door, plan: FloorPlan, scale: float) -> _Entrance:
     wall = plan.wall(door.wall)
     u = wall.direction
     position = np.asarray(door.position)
