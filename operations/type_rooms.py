@@ -437,7 +437,7 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
              for n in typing.notes]
     notes += [Diagnostic("warning", _STAGE, (
         f"room {room} ({kind}) {_NO_WINDOW}, but none fits its outer wall: "
-        f"no typing of this layout gave that type only rooms with a window"),
+        f"no layout drawn for this floor had a typing that gave every such room one"),
         floor=plan.index, room=room)
         for room, kind in zip(ids, typing.types) if windowed and room not in windowed
         and (rule := table.rule_for(kind)) is not None and rule.needs_window]
