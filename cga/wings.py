@@ -222,14 +222,22 @@ def _without_party_windows(plan: FloorPlan, party: dict[int, LineString]) -> Flo
             o.kind == "window" and tuple(round(c, 6) for c in wall.point_at(o.center)) in drop))
         walls.append(replace(wall, openings=kept) if len(kept) != len(wall.openings) else wall)
     names = {(w.room, f"window{w.id}") for w in gone}
-    note = Diagnostic("info", "make_floor", f"left out {len(gone)} window(s) in the walls "
-                      f"between wings (they would look into the neighbouring wing's wall)",
-                      floor=plan.index)
+    windows = tuple(w for w in plan.windows if w.id not in ids)
+    notes = [Diagnostic("info", "make_floor", f"left out {len(gone)} window(s) in the walls "
+                        f"between wings (they would look into the neighbouring wing's wall)",
+                        floor=plan.index)]
+    dark = sorted({w.room for w in gone} - {w.room for w in windows})
+    if dark:  # typed before the wings met, as if those walls looked out
+        notes.append(Diagnostic(
+            "warning", "make_floor",
+            f"{', '.join(plan.room(r).label for r in dark)} lost every window to the walls "
+            f"between wings: each wing is typed on its own, as if those walls looked out",
+            floor=plan.index))
     return plan.with_changes(
-        walls=tuple(walls), windows=tuple(w for w in plan.windows if w.id not in ids),
+        walls=tuple(walls), windows=windows,
         furniture=tuple(i for i in plan.furniture
                         if not (i.is_detail and (i.room, i.name) in names)),
-        diagnostics=plan.diagnostics + (note,))
+        diagnostics=plan.diagnostics + tuple(notes))
 
 
 def _facing(plan: FloorPlan, party: dict[int, LineString], wall: Wall,

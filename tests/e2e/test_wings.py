@@ -10,7 +10,9 @@ networkx on the built scene.
 
 from __future__ import annotations
 
+import csv
 from collections import Counter
+from pathlib import Path
 
 import networkx as nx
 import pytest
@@ -33,6 +35,7 @@ Floor --> case floor == 0 : type_rooms("house_types.csv") Typed
 Typed --> add_furniture("furniture_house.csv", 0.2>1.2>1.2, 0.9, 2.1, 10, 20) Furnished
 """
 PARTY = LineString([(12, 0), (12, 10)])
+RULES = Path(__file__).resolve().parents[2] / "rules"
 
 
 @pytest.fixture(scope="module")
@@ -158,6 +161,14 @@ Typed --> add_furniture("furniture_house.csv", 0.2>1.2>1.3, 0.9, 2.1, 10, 20) Fu
 """
 
 
+NEEDS_WINDOW = {row["Type"] for table in ("house_types.csv", "house_upper_types.csv")
+                for row in csv.DictReader(
+                    [line for line in (RULES / table).read_text(encoding="utf-8").splitlines()
+                     if not line.startswith("#")], delimiter=";")
+                if row["needsWindow"].strip().lower() in ("1", "true")}
+"""The types the house tables say need a window, read with the csv module."""
+
+
 def _building_graph(scene) -> nx.Graph:
     """Rooms of every floor as ``(floor, room)``, joined by the doors and the stairs."""
     graph = nx.Graph()
@@ -193,6 +204,12 @@ def test_wings_whose_corridors_do_not_face_are_joined_on_every_floor(tmp_path):
                 rest = graph.subgraph(set(graph.nodes) - {(plan.index, room.id)})
                 if not nx.is_connected(rest):
                     assert plan.index > 0 and plan.index in warned, (seed, plan.index, room.id)
+            lit = {w.room for w in plan.windows}
+            said = " ".join(d.message for d in plan.diagnostics if d.level == "warning")
+            for room in plan.rooms:  # a room left without a window is named in a warning
+                if room.type in NEEDS_WINDOW and room.id not in lit:
+                    assert room.label in said or f"room {room.id} ({room.type})" in said, \
+                        (seed, plan.index, room.label)
 
 
 def test_two_storeys_with_one_number_are_refused_with_the_reason(tmp_path, capsys):
