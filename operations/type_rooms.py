@@ -29,6 +29,7 @@ largest.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Literal
@@ -416,19 +417,19 @@ def _type_layout(plan: FloorPlan, table: RuleTable, rng: np.random.Generator, *,
     choices = _entrance_choices(ids, sites, wants_front_door, landing)
 
     def typed_with(outer: frozenset[int]) -> Typing:
-        """A typing where types that need a window take rooms of ``outer``."""
-        for attempt, entrances in enumerate(choices, start=1):
+        """A typing where types that need a window take rooms of ``outer``, trying the
+        entrance choices in order; the last one's failure is raised."""
+        def typed(entrances: frozenset[int] | None) -> Typing:
             rooms = RoomSet(areas=tuple(room.area for room in free),
                             adjacency=sites.adjacency(ids), entrances=entrances, ids=ids,
                             outer=outer)
-            try:
-                return assign_types(rooms, table, rng, area_scale=table.area_scale(units),
-                                    pinned=pinned)
-            except NoSolutionError:
-                if attempt == len(choices):
-                    raise
-                # next: the same rules without asking for the stair landing
-        raise AssertionError("unreachable: the last choice raises")
+            return assign_types(rooms, table, rng, area_scale=table.area_scale(units),
+                                pinned=pinned)
+
+        for entrances in choices[:-1]:
+            with contextlib.suppress(NoSolutionError):
+                return typed(entrances)
+        return typed(choices[-1])
 
     walled = frozenset(i for i, room in enumerate(ids) if room in with_outer_wall)
     lit = frozenset(i for i, room in enumerate(ids) if room in windowed)
